@@ -1,0 +1,76 @@
+// `rgbdvo run FOLDER`: visual odometry over a recorded folder.
+#include <iostream>
+#include <memory>
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "rgbdvo/calibration.hpp"
+#include "rgbdvo/open_source.hpp"
+#include "rgbdvo/run.hpp"
+
+namespace rgbdvo::cli {
+namespace {
+
+struct RunArgs {
+  std::string folder, calib, csv, tum;
+  bool quiet = false;
+  SourceOptions source;
+  OdometryOptions odometry;
+};
+
+int Run(const RunArgs& a) {
+  const Calibration calib = LoadCalibration(a.calib);
+  a.odometry.Check();
+  std::unique_ptr<FrameSource> source = OpenRecording(a.folder, a.source);
+  if (auto* tum = dynamic_cast<TumSource*>(source.get()); tum && !tum->unpaired().empty()) {
+    std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
+              << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
+              << " s (first: " << tum->unpaired().front().path << ")\n";
+  }
+  std::vector<std::unique_ptr<TrajectoryWriter>> writers;
+  if (!a.csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(a.csv));
+  if (!a.tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(a.tum));
+  std::vector<TrajectoryWriter*> writer_ptrs;
+  for (auto& w : writers) writer_ptrs.push_back(w.get());
+
+  if (!a.quiet) {
+    std::cout << "# source: " << source->Describe() << "\n# calibration: " << a.calib
+              << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
+              << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
+              << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m << "] m\n";
+    std::istringstream config(a.odometry.ToString());
+    for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
+    std::cout << std::flush;
+  }
+  Odometry odometry(a.odometry, calib);
+  const bool progress = !a.quiet && isatty(STDERR_FILENO);
+  const RunSummary summary = RunOdometry(*source, odometry, writer_ptrs, [&](const FrameResult& r) {
+    if (progress) std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
+  });
+  if (progress) std::cerr << "\n";
+  std::cout << summary.Brief() << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void AddRunCommand(CLI::App& app) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* cmd = app.add_subcommand("run", "visual odometry over a recorded folder (TUM RGB-D layout)");
+  cmd->add_option("folder", args->folder, "recording folder")->required();
+  cmd->add_option("--calib", args->calib, "calibration YAML (see calib/)")->required();
+  cmd->add_option("--out", args->csv, "trajectory CSV, written frame by frame");
+  cmd->add_option("--tum", args->tum, "trajectory in TUM format (timestamp tx ty tz qx qy qz qw)");
+  cmd->add_option("--depth-scale", args->source.tum.depth_units_per_m, "TUM depth units per metre")
+      ->capture_default_str();
+  cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")
+      ->capture_default_str();
+  cmd->add_flag("--quiet", args->quiet, "print only the summary line");
+  AddOdometryFlags(cmd, &args->odometry);
+  cmd->callback([args] {
+    const int code = Run(*args);
+    if (code != 0) throw CLI::RuntimeError(code);
+  });
+}
+
+}  // namespace rgbdvo::cli

@@ -1,0 +1,35 @@
+#pragma once
+// The camera calibration of paper section 2.1: the linear colour->IR mapping (eq. 1), the IR
+// (depth) camera intrinsics K_ir (eq. 2) and the usable depth range. Stored as YAML through
+// cv::FileStorage with top-level keys A, B, C, D, K_ir (3x3), min_depth_m, max_depth_m.
+
+#include <string>
+
+namespace rgbdvo {
+
+struct Calibration {
+  // u_ir = A * u_vis + B, v_ir = C * v_vis + D (paper eq. 1). Identity for registered depth.
+  double A = 1.0;
+  double B = 0.0;
+  double C = 1.0;
+  double D = 0.0;
+  // K_ir: focal lengths and principal point of the depth image, pixels (paper eq. 3 values).
+  double fx = 475.0;
+  double fy = 475.0;
+  double cx = 320.0;
+  double cy = 240.0;
+  // Depths outside [min_depth_m, max_depth_m] are treated as missing, metres.
+  double min_depth_m = 0.4;
+  double max_depth_m = 8.0;
+  // Free text kept with the file (where the numbers came from).
+  std::string description;
+
+  void Check() const;  // throws std::invalid_argument naming the field and the rule it broke
+};
+
+// Throws std::runtime_error naming the file if it cannot be read or a field is missing/invalid.
+Calibration LoadCalibration(const std::string& path);
+// Throws std::runtime_error naming the file if it cannot be written.
+void SaveCalibration(const Calibration& calib, const std::string& path);
+
+}  // namespace rgbdvo

@@ -1,0 +1,32 @@
+#pragma once
+// Colour pixel -> IR pixel -> 3D point (paper section 2.1, eq. 1 and 4).
+
+#include <optional>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "rgbdvo/calibration.hpp"
+
+namespace rgbdvo {
+
+// Paper eq. 1: the IR (depth image) pixel that sees what colour pixel uv_vis sees.
+Eigen::Vector2d ColorToIr(const Calibration& calib, const Eigen::Vector2d& uv_vis);
+
+// Paper eq. 4: X = depth * K_ir^-1 [u_ir, v_ir, 1]^T. `depth_m` is the Z coordinate (the Kinect
+// and TUM depth images store Z, not the range along the ray), so the result has Z = depth_m.
+Eigen::Vector3d BackProject(const Calibration& calib, const Eigen::Vector2d& uv_ir, double depth_m);
+
+// Inverse of BackProject: the IR pixel of a point in the IR camera frame (Z > 0).
+Eigen::Vector2d ProjectIr(const Calibration& calib, const Eigen::Vector3d& p_in_ir);
+
+// The depth (metres) at the IR pixel nearest to uv_ir in a CV_32FC1 depth image, or nullopt when
+// the pixel lies outside the image, has no reading (0) or lies outside the calibrated range.
+std::optional<double> SampleDepth(const Calibration& calib, const cv::Mat& depth_m,
+                                  const Eigen::Vector2d& uv_ir);
+
+// The whole chain: the 3D point (IR camera frame) seen at colour pixel uv_vis, or nullopt.
+std::optional<Eigen::Vector3d> LiftColorPixel(const Calibration& calib, const cv::Mat& depth_m,
+                                              const Eigen::Vector2d& uv_vis);
+
+}  // namespace rgbdvo

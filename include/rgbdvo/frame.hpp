@@ -1,0 +1,18 @@
+#pragma once
+// One RGB-D frame as it flows from a source into the odometry.
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace rgbdvo {
+
+struct Frame {
+  int index = 0;          // 0-based position in the sequence as delivered
+  double timestamp = 0;   // seconds (source clock)
+  cv::Mat bgr;            // CV_8UC3 colour image
+  cv::Mat depth_m;        // CV_32FC1 depth in the IR image, metres along Z; 0 = no reading
+  std::string name;       // colour file or device frame name, for messages
+};
+
+}  // namespace rgbdvo

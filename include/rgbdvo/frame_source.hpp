@@ -1,0 +1,21 @@
+#pragma once
+// A sequence of frames: a recorded folder or a live device.
+
+#include <optional>
+#include <string>
+
+#include "rgbdvo/frame.hpp"
+
+namespace rgbdvo {
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  // The next frame, or nullopt at the end. Throws std::runtime_error naming the file or the
+  // cause when a frame exists but cannot be read (corrupt image, wrong size, device lost).
+  virtual std::optional<Frame> Next() = 0;
+  // One line: what is read and how (for the configuration printed at the start of a run).
+  virtual std::string Describe() const = 0;
+};
+
+}  // namespace rgbdvo

@@ -1,0 +1,20 @@
+#pragma once
+// Opens a recorded folder, detecting its layout.
+
+#include <memory>
+#include <string>
+
+#include "rgbdvo/frame_source.hpp"
+#include "rgbdvo/tum_source.hpp"
+
+namespace rgbdvo {
+
+struct SourceOptions {
+  TumSourceOptions tum;
+};
+
+// TUM RGB-D layout (rgb.txt + depth.txt). Throws std::runtime_error naming the folder when it
+// is missing or of no known layout.
+std::unique_ptr<FrameSource> OpenRecording(const std::string& folder, const SourceOptions& options);
+
+}  // namespace rgbdvo

@@ -1,0 +1,40 @@
+#pragma once
+// Trajectory files, written and flushed one frame at a time so nothing computed is lost.
+// Poses are camera-to-world (world_from_cam); the world frame is the first camera's frame.
+
+#include <fstream>
+#include <string>
+
+#include "rgbdvo/odometry.hpp"
+
+namespace rgbdvo {
+
+class TrajectoryWriter {
+ public:
+  virtual ~TrajectoryWriter() = default;
+  virtual void Write(const FrameResult& result) = 0;
+};
+
+// CSV: header `frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status`, a row per frame.
+class CsvTrajectoryWriter : public TrajectoryWriter {
+ public:
+  explicit CsvTrajectoryWriter(const std::string& path);  // throws naming the file
+  void Write(const FrameResult& result) override;
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+};
+
+// TUM: `timestamp tx ty tz qx qy qz qw`, a line per frame (TUM benchmark tools' format).
+class TumTrajectoryWriter : public TrajectoryWriter {
+ public:
+  explicit TumTrajectoryWriter(const std::string& path);  // throws naming the file
+  void Write(const FrameResult& result) override;
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+};
+
+}  // namespace rgbdvo

@@ -1,0 +1,56 @@
+#include "rgbdvo/trajectory_writer.hpp"
+
+#include <iomanip>
+#include <stdexcept>
+
+namespace rgbdvo {
+namespace {
+
+std::ofstream OpenOrThrow(const std::string& path) {
+  std::ofstream out(path, std::ios::out | std::ios::trunc);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << std::fixed;
+  return out;
+}
+
+void WritePose(std::ostream& out, const Rigid3d& T, char sep) {
+  const Eigen::Quaterniond q(T.linear());
+  const Eigen::Vector3d& t = T.translation();
+  out << std::setprecision(6) << t.x() << sep << t.y() << sep << t.z() << sep
+      << std::setprecision(7) << q.x() << sep << q.y() << sep << q.z() << sep << q.w();
+}
+
+void FlushOrThrow(std::ofstream& out, const std::string& path) {
+  out.flush();
+  if (!out) throw std::runtime_error(path + ": write failed (disk full or file gone?)");
+}
+
+}  // namespace
+
+CsvTrajectoryWriter::CsvTrajectoryWriter(const std::string& path)
+    : path_(path), out_(OpenOrThrow(path)) {
+  out_ << "frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status\n";
+  FlushOrThrow(out_, path_);
+}
+
+void CsvTrajectoryWriter::Write(const FrameResult& r) {
+  out_ << r.frame << ',' << std::setprecision(6) << r.timestamp << ',';
+  WritePose(out_, r.world_from_cam, ',');
+  out_ << ',' << r.matches << ',' << r.inliers << ',' << r.StatusString() << '\n';
+  FlushOrThrow(out_, path_);
+}
+
+TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path)
+    : path_(path), out_(OpenOrThrow(path)) {
+  out_ << "# timestamp tx ty tz qx qy qz qw (camera-to-world, rgbdvo)\n";
+  FlushOrThrow(out_, path_);
+}
+
+void TumTrajectoryWriter::Write(const FrameResult& r) {
+  out_ << std::setprecision(6) << r.timestamp << ' ';
+  WritePose(out_, r.world_from_cam, ' ');
+  out_ << '\n';
+  FlushOrThrow(out_, path_);
+}
+
+}  // namespace rgbdvo

@@ -1,0 +1,78 @@
+#include "test_support.hpp"
+
+#include <array>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace rgbdvo::test {
+
+double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b) {
+  return RotationAngleDeg(a.linear().transpose() * b.linear());
+}
+
+double TranslationError(const Rigid3d& a, const Rigid3d& b) {
+  return (a.translation() - b.translation()).norm();
+}
+
+bool RigidNear(const Rigid3d& a, const Rigid3d& b, double rot_deg, double trans_m) {
+  return RotationErrorDeg(a, b) <= rot_deg && TranslationError(a, b) <= trans_m;
+}
+
+Rigid3d RandomRigid(std::mt19937& rng, double angle_rad, double trans_m) {
+  std::normal_distribution<double> n(0, 1);
+  const Eigen::Vector3d axis(n(rng), n(rng), n(rng));
+  const Eigen::Vector3d dir(n(rng), n(rng), n(rng));
+  Rigid3d T = Rigid3d::Identity();
+  T.linear() = AxisAngle(axis, angle_rad);
+  T.translation() = dir.normalized() * trans_m;
+  return T;
+}
+
+std::vector<PointPair> SynthesizePairs(std::mt19937& rng, const Rigid3d& prev_from_cur, int n,
+                                       double sigma_m, double outlier_fraction) {
+  std::uniform_real_distribution<double> x(-2, 2), y(-1.5, 1.5), z(1, 4);
+  std::normal_distribution<double> noise(0, sigma_m > 0 ? sigma_m : 1);
+  const int outliers = static_cast<int>(std::lround(outlier_fraction * n));
+  std::vector<PointPair> pairs;
+  for (int k = 0; k < n; ++k) {
+    PointPair p;
+    p.p_cur = {x(rng), y(rng), z(rng)};
+    if (k < outliers) {
+      p.p_prev = {x(rng), y(rng), z(rng)};
+    } else {
+      p.p_prev = prev_from_cur * p.p_cur;
+      if (sigma_m > 0) p.p_prev += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    }
+    pairs.push_back(p);
+  }
+  return pairs;
+}
+
+std::string MakeTempDir(const std::string& tag) {
+  static std::atomic<int> counter{0};
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("rgbdvo_test_" + tag + "_" + std::to_string(getpid()) + "_" +
+                    std::to_string(counter++));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+int RunCommand(const std::string& command, std::string* output) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buf;
+  output->clear();
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output->append(buf.data(), n);
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string RgbdvoExe() { return RGBDVO_EXE; }
+std::string SourceDir() { return RGBDVO_SOURCE_DIR; }
+
+}  // namespace rgbdvo::test

@@ -1,0 +1,39 @@
+#pragma once
+// Shared test helpers: pose comparison, random motions, synthetic point pairs, running the CLI.
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "rgbdvo/geometry.hpp"
+#include "rgbdvo/point_pairs.hpp"
+
+namespace rgbdvo::test {
+
+// Rotation angle (deg) and translation distance (m) between two poses.
+double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b);
+double TranslationError(const Rigid3d& a, const Rigid3d& b);
+// True when a and b differ by at most rot_deg and trans_m; prints both on failure via INFO.
+bool RigidNear(const Rigid3d& a, const Rigid3d& b, double rot_deg, double trans_m);
+
+// A random rigid motion with rotation angle `angle_rad` about a random axis and a translation
+// of norm `trans_m` in a random direction.
+Rigid3d RandomRigid(std::mt19937& rng, double angle_rad, double trans_m);
+
+// n pairs p_prev = prev_from_cur * p_cur (+ isotropic Gaussian noise sigma_m per coordinate on
+// p_prev), p_cur spread over a 4 x 3 x 3 m volume in front of the camera. The first
+// round(outlier_fraction*n) pairs get an unrelated p_prev.
+std::vector<PointPair> SynthesizePairs(std::mt19937& rng, const Rigid3d& prev_from_cur, int n,
+                                       double sigma_m, double outlier_fraction);
+
+// A fresh empty temporary folder, unique per call.
+std::string MakeTempDir(const std::string& tag);
+
+// Runs a shell command; returns its exit status and puts stdout+stderr into *output.
+int RunCommand(const std::string& command, std::string* output);
+
+// Path of the built rgbdvo executable and of the source tree.
+std::string RgbdvoExe();
+std::string SourceDir();
+
+}  // namespace rgbdvo::test
