@@ -1,5 +1,6 @@
 #include "rgbdvo/trajectory_writer.hpp"
 
+#include <filesystem>
 #include <iomanip>
 #include <stdexcept>
 
@@ -7,6 +8,9 @@ namespace rgbdvo {
 namespace {
 
 std::ofstream OpenOrThrow(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // failure shows below
   std::ofstream out(path, std::ios::out | std::ios::trunc);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   out << std::fixed;
