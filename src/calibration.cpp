@@ -23,6 +23,7 @@ double ReadNumber(const cv::FileStorage& fs, const std::string& key, const std::
 void Calibration::Check() const {
   for (double v : {A, B, C, D, fx, fy, cx, cy, min_depth_m, max_depth_m})
     Require(std::isfinite(v), "all fields must be finite numbers");
+  for (double v : dist_ir) Require(std::isfinite(v), "dist_ir values must be finite numbers");
   Require(A != 0.0, "A must be non-zero (u_ir = A*u + B)");
   Require(C != 0.0, "C must be non-zero (v_ir = C*v + D)");
   Require(fx > 0 && fy > 0, "K_ir focal lengths fx, fy must be > 0");
@@ -52,6 +53,13 @@ Calibration LoadCalibration(const std::string& path) {
   c.fy = K.at<double>(1, 1);
   c.cx = K.at<double>(0, 2);
   c.cy = K.at<double>(1, 2);
+  if (!fs["dist_ir"].empty()) {
+    cv::Mat dist;
+    fs["dist_ir"] >> dist;
+    if (dist.total() != 5) throw std::runtime_error(path + ": field 'dist_ir' must have 5 values");
+    dist.convertTo(dist, CV_64F);
+    for (int i = 0; i < 5; ++i) c.dist_ir[i] = dist.at<double>(i);
+  }
   c.min_depth_m = ReadNumber(fs, "min_depth_m", path);
   c.max_depth_m = ReadNumber(fs, "max_depth_m", path);
   if (!fs["description"].empty()) c.description = static_cast<std::string>(fs["description"]);
@@ -77,6 +85,10 @@ void SaveCalibration(const Calibration& c, const std::string& path) {
   fs << "A" << c.A << "B" << c.B << "C" << c.C << "D" << c.D;
   const cv::Mat K = (cv::Mat_<double>(3, 3) << c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1);
   fs << "K_ir" << K;
+  if (c.dist_ir != std::array<double, 5>{0, 0, 0, 0, 0}) {
+    fs.writeComment("distortion of the depth camera: k1 k2 p1 p2 k3 (OpenCV model)");
+    fs << "dist_ir" << cv::Mat(1, 5, CV_64F, const_cast<double*>(c.dist_ir.data())).clone();
+  }
   fs << "min_depth_m" << c.min_depth_m << "max_depth_m" << c.max_depth_m;
 }
 

@@ -8,12 +8,41 @@ Eigen::Vector2d ColorToIr(const Calibration& c, const Eigen::Vector2d& uv) {
   return {c.A * uv.x() + c.B, c.C * uv.y() + c.D};
 }
 
+namespace {
+
+bool HasDistortion(const Calibration& c) {
+  for (double k : c.dist_ir)
+    if (k != 0) return true;
+  return false;
+}
+
+// OpenCV's (Brown-Conrady) model on normalised coordinates.
+Eigen::Vector2d Distort(const Calibration& c, const Eigen::Vector2d& x) {
+  const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
+  const double r2 = x.squaredNorm(), radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+  return {x.x() * radial + 2 * p1 * x.x() * x.y() + p2 * (r2 + 2 * x.x() * x.x()),
+          x.y() * radial + p1 * (r2 + 2 * x.y() * x.y()) + 2 * p2 * x.x() * x.y()};
+}
+
+}  // namespace
+
+Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
+  const Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  if (!HasDistortion(c)) return distorted;
+  Eigen::Vector2d x = distorted;
+  for (int i = 0; i < 20; ++i) x += distorted - Distort(c, x);
+  return x;
+}
+
 Eigen::Vector3d BackProject(const Calibration& c, const Eigen::Vector2d& uv_ir, double depth_m) {
-  return {(uv_ir.x() - c.cx) / c.fx * depth_m, (uv_ir.y() - c.cy) / c.fy * depth_m, depth_m};
+  const Eigen::Vector2d x = NormalizeIr(c, uv_ir);
+  return {x.x() * depth_m, x.y() * depth_m, depth_m};
 }
 
 Eigen::Vector2d ProjectIr(const Calibration& c, const Eigen::Vector3d& p) {
-  return {c.fx * p.x() / p.z() + c.cx, c.fy * p.y() / p.z() + c.cy};
+  Eigen::Vector2d x(p.x() / p.z(), p.y() / p.z());
+  if (HasDistortion(c)) x = Distort(c, x);
+  return {c.fx * x.x() + c.cx, c.fy * x.y() + c.cy};
 }
 
 std::optional<double> SampleDepth(const Calibration& c, const cv::Mat& depth_m,

@@ -73,3 +73,25 @@ TEST_CASE("Depth 0, out-of-range depth and out-of-image pixels are excluded") {
   c.B = 50;
   CHECK_FALSE(LiftColorPixel(c, depth, {630, 100}));
 }
+
+TEST_CASE("BackProject removes lens distortion and ProjectIr puts it back") {
+  Calibration c;  // TUM fr1 colour camera (Sturm et al. 2012)
+  c.fx = 517.3;
+  c.fy = 516.5;
+  c.cx = 318.6;
+  c.cy = 255.3;
+  c.dist_ir = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
+  for (double u : {5.0, 200.0, 318.6, 500.0, 635.0})
+    for (double v : {5.0, 255.3, 470.0}) {
+      const Eigen::Vector3d X = BackProject(c, {u, v}, 2.0);
+      CHECK(X.z() == 2.0);
+      const Eigen::Vector2d uv = ProjectIr(c, X);
+      CHECK(uv.x() == Approx(u).margin(1e-6));
+      CHECK(uv.y() == Approx(v).margin(1e-6));
+    }
+  // Off-centre, distortion matters: the undistorted ray differs from the pinhole one by pixels.
+  Calibration pinhole = c;
+  pinhole.dist_ir = {0, 0, 0, 0, 0};
+  const Eigen::Vector3d corner = BackProject(c, {5, 5}, 2.0), plain = BackProject(pinhole, {5, 5}, 2.0);
+  CHECK((corner - plain).norm() * c.fx / 2.0 > 3.0);
+}

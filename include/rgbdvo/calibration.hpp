@@ -1,8 +1,10 @@
 #pragma once
 // The camera calibration of paper section 2.1: the linear colour->IR mapping (eq. 1), the IR
 // (depth) camera intrinsics K_ir (eq. 2) and the usable depth range. Stored as YAML through
-// cv::FileStorage with top-level keys A, B, C, D, K_ir (3x3), min_depth_m, max_depth_m.
+// cv::FileStorage with top-level keys A, B, C, D, K_ir (3x3), min_depth_m, max_depth_m and the
+// optional dist_ir (1x5: k1 k2 p1 p2 k3).
 
+#include <array>
 #include <string>
 
 namespace rgbdvo {
@@ -18,6 +20,9 @@ struct Calibration {
   double fy = 475.0;
   double cx = 320.0;
   double cy = 240.0;
+  // Lens distortion of the depth image's camera, OpenCV's model k1 k2 p1 p2 k3 (all 0 = none;
+  // the paper neglects it). For registered depth it is the colour camera's distortion.
+  std::array<double, 5> dist_ir = {0, 0, 0, 0, 0};
   // Depths outside [min_depth_m, max_depth_m] are treated as missing, metres.
   double min_depth_m = 0.4;
   double max_depth_m = 8.0;

@@ -13,11 +13,15 @@ namespace rgbdvo {
 // Paper eq. 1: the IR (depth image) pixel that sees what colour pixel uv_vis sees.
 Eigen::Vector2d ColorToIr(const Calibration& calib, const Eigen::Vector2d& uv_vis);
 
-// Paper eq. 4: X = depth * K_ir^-1 [u_ir, v_ir, 1]^T. `depth_m` is the Z coordinate (the Kinect
+// The undistorted normalised coordinates (x, y) = K_ir^-1 [u, v, 1] of IR pixel uv_ir, with
+// dist_ir removed (fixed-point inversion of OpenCV's model, as cv::undistortPoints does).
+Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_ir);
+
+// Paper eq. 4 (plus the lens distortion the paper neglects, when dist_ir is set): X = depth * K_ir^-1 [u_ir, v_ir, 1]^T. `depth_m` is the Z coordinate (the Kinect
 // and TUM depth images store Z, not the range along the ray), so the result has Z = depth_m.
 Eigen::Vector3d BackProject(const Calibration& calib, const Eigen::Vector2d& uv_ir, double depth_m);
 
-// Inverse of BackProject: the IR pixel of a point in the IR camera frame (Z > 0).
+// Inverse of BackProject: the IR pixel of a point in the IR camera frame (Z > 0), distorted.
 Eigen::Vector2d ProjectIr(const Calibration& calib, const Eigen::Vector3d& p_in_ir);
 
 // The depth (metres) at the IR pixel nearest to uv_ir in a CV_32FC1 depth image, or nullopt when
