@@ -15,12 +15,12 @@ struct RunArgs {
   std::string folder, calib, csv, tum;
   bool quiet = false;
   SourceOptions source;
-  OdometryOptions odometry;
+  std::unique_ptr<OdometryFlags> odometry_flags;
 };
 
 int Run(const RunArgs& a) {
+  const OdometryOptions odometry_options = a.odometry_flags->Resolve();
   const Calibration calib = LoadCalibration(a.calib);
-  a.odometry.Check();
   std::unique_ptr<FrameSource> source = OpenRecording(a.folder, a.source);
   if (auto* tum = dynamic_cast<TumSource*>(source.get()); tum && !tum->unpaired().empty()) {
     std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
@@ -38,11 +38,11 @@ int Run(const RunArgs& a) {
               << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
               << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
               << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m << "] m\n";
-    std::istringstream config(a.odometry.ToString());
+    std::istringstream config(odometry_options.ToString());
     for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
     std::cout << std::flush;
   }
-  Odometry odometry(a.odometry, calib);
+  Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
   const RunSummary summary = RunOdometry(*source, odometry, writer_ptrs, [&](const FrameResult& r) {
     if (progress) std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
@@ -66,7 +66,7 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
-  AddOdometryFlags(cmd, &args->odometry);
+  args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Run(*args);
     if (code != 0) throw CLI::RuntimeError(code);

@@ -4,12 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "rgbdvo/odometry.hpp"
+#include "odometry_flags.hpp"
 
 namespace rgbdvo::cli {
-
-// Adds the flags of every OdometryOptions field (paper defaults) to `cmd`.
-void AddOdometryFlags(CLI::App* cmd, OdometryOptions* options);
 
 void AddRunCommand(CLI::App& app);
 

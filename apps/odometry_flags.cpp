@@ -1,33 +1,77 @@
-#include "commands.hpp"
+#include "odometry_flags.hpp"
 
 namespace rgbdvo::cli {
+namespace {
+const char* kGroup = "Odometry (see README; --preset paper = Fiala & Ufkes 2011 exactly)";
+}
 
-void AddOdometryFlags(CLI::App* cmd, OdometryOptions* o) {
-  const std::string g = "Odometry (defaults: Fiala & Ufkes 2011)";
-  cmd->add_option("--max-features", o->features.max_features, "SIFT: keep the N strongest, 0 = all")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--contrast-threshold", o->features.contrast_threshold, "SIFT DoG contrast threshold")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--ratio", o->matching.ratio, "Lowe ratio test: best < ratio * second best")
-      ->group(g)->capture_default_str();
-  cmd->add_flag("!--no-mutual", o->matching.mutual, "do not require mutual nearest neighbours")
-      ->group(g);
-  cmd->add_option("--trials", o->ransac.max_trials, "RANSAC hypotheses (paper: 200)")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--sample-size", o->ransac.sample_size, "matches per RANSAC hypothesis (paper: 4)")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--inlier-dist", o->ransac.inlier_distance_m, "RANSAC inlier 3D distance, m (paper: 0.015)")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--min-inliers", o->verify.min_inliers, "reject a frame with fewer inliers (paper: 15)")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--max-translation", o->verify.max_translation_m, "reject a larger motion per frame, m (paper: 0.5)")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--max-rotation", o->verify.max_rotation_deg, "reject a larger rotation per frame, deg (paper: 60)")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--max-rejected-run", o->max_rejected_run,
-                  "after N rejected frames in a row restart from the current frame (0 = never)")
-      ->group(g)->capture_default_str();
-  cmd->add_option("--seed", o->seed, "RANSAC random seed")->group(g)->capture_default_str();
+template <typename T>
+void OdometryFlags::Add(const std::string& name, T& (*field)(OdometryOptions&), const std::string& help) {
+  const OdometryOptions defaults;
+  CLI::Option* opt = cmd_->add_option(name, field(given_), help)->group(kGroup);
+  opt->default_str(CLI::detail::to_string(field(const_cast<OdometryOptions&>(defaults))));
+  apply_given_.push_back([this, opt, field](OdometryOptions& o) {
+    if (opt->count() > 0) field(o) = field(given_);
+  });
+}
+
+void OdometryFlags::AddSwitch(const std::string& name, bool& (*field)(OdometryOptions&), bool value,
+                              const std::string& help) {
+  CLI::Option* opt = cmd_->add_flag(name, help)->group(kGroup);
+  apply_given_.push_back([opt, field, value](OdometryOptions& o) {
+    if (opt->count() > 0) field(o) = value;
+  });
+}
+
+OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
+  cmd->add_option("--preset", preset_, "default (most accurate) or paper (Fiala & Ufkes 2011)")
+      ->group(kGroup)
+      ->check(CLI::IsMember({"default", "paper"}))
+      ->capture_default_str();
+  using O = OdometryOptions;
+  Add<int>("--max-features", [](O& o) -> int& { return o.features.max_features; },
+           "SIFT: keep the N strongest, 0 = all");
+  Add<double>("--contrast-threshold", [](O& o) -> double& { return o.features.contrast_threshold; },
+              "SIFT DoG contrast threshold");
+  Add<double>("--ratio", [](O& o) -> double& { return o.matching.ratio; },
+              "Lowe ratio test: best < ratio * second best");
+  AddSwitch("--no-mutual", [](O& o) -> bool& { return o.matching.mutual; }, false,
+            "do not require mutual nearest neighbours");
+  AddSwitch("--mutual", [](O& o) -> bool& { return o.matching.mutual; }, true,
+            "require mutual nearest neighbours (default; not in --preset paper)");
+  Add<int>("--trials", [](O& o) -> int& { return o.ransac.max_trials; }, "RANSAC hypotheses (paper: 200)");
+  Add<int>("--sample-size", [](O& o) -> int& { return o.ransac.sample_size; },
+           "matches per RANSAC hypothesis (paper: 4)");
+  Add<double>("--inlier-dist", [](O& o) -> double& { return o.ransac.inlier_distance_m; },
+              "RANSAC inlier 3D distance, m (paper: 0.015)");
+  Add<int>("--min-inliers", [](O& o) -> int& { return o.verify.min_inliers; },
+           "reject a frame with fewer inliers (paper: 15)");
+  Add<double>("--max-translation", [](O& o) -> double& { return o.verify.max_translation_m; },
+              "reject a larger motion per frame, m (paper: 0.5)");
+  Add<double>("--max-rotation", [](O& o) -> double& { return o.verify.max_rotation_deg; },
+              "reject a larger rotation per frame, deg (paper: 60)");
+  AddSwitch("--no-refine", [](O& o) -> bool& { return o.refine_enabled; }, false,
+            "skip the reprojection+depth refinement (the paper's SVD only)");
+  Add<double>("--pixel-sigma", [](O& o) -> double& { return o.refine.pixel_sigma; },
+              "refinement: keypoint noise, px");
+  Add<double>("--depth-noise", [](O& o) -> double& { return o.refine.depth_noise_coeff; },
+              "refinement: depth noise sigma_z = c*z^2, c in 1/m (Khoshelham & Elberink 2012)");
+  Add<double>("--inlier-sigmas", [](O& o) -> double& { return o.refine.inlier_sigmas; },
+              "refinement: inlier below this whitened error");
+  Add<double>("--keyframe-ratio", [](O& o) -> double& { return o.keyframe_inlier_ratio; },
+              "new keyframe when inliers < ratio * the keyframe's first inliers (0 = every frame)");
+  AddSwitch("--no-undistort", [](O& o) -> bool& { return o.undistort; }, false,
+            "ignore the calibration's lens distortion (the paper's pinhole model)");
+  Add<int>("--max-rejected-run", [](O& o) -> int& { return o.max_rejected_run; },
+           "after N rejected frames in a row restart from the current frame (0 = never)");
+  Add<uint32_t>("--seed", [](O& o) -> uint32_t& { return o.seed; }, "RANSAC random seed");
+}
+
+OdometryOptions OdometryFlags::Resolve() const {
+  OdometryOptions o = PresetOptions(preset_);
+  for (const auto& apply : apply_given_) apply(o);
+  o.Check();
+  return o;
 }
 
 }  // namespace rgbdvo::cli

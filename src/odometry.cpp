@@ -20,7 +20,23 @@ void OdometryOptions::Check() const {
   matching.Check();
   ransac.Check();
   verify.Check();
+  refine.Check();
+  if (!(keyframe_inlier_ratio >= 0 && keyframe_inlier_ratio <= 1))
+    throw std::invalid_argument("keyframe_inlier_ratio must be in [0, 1]");
   if (max_rejected_run < 0) throw std::invalid_argument("max_rejected_run must be >= 0");
+}
+
+OdometryOptions PresetOptions(const std::string& name) {
+  OdometryOptions o;
+  if (name == "default") return o;
+  if (name == "paper") {
+    o.matching.mutual = false;      // the paper names no matching rule; a plain ratio test
+    o.refine_enabled = false;       // SVD on the inliers only (eq. 5-10)
+    o.keyframe_inlier_ratio = 0;    // successive frames
+    o.undistort = false;            // "a perfect pinhole model was used"
+    return o;
+  }
+  throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
 }
 
 std::string OdometryOptions::ToString() const {
@@ -38,6 +54,13 @@ std::string OdometryOptions::ToString() const {
     << "verify.min_inliers = " << verify.min_inliers << "\n"
     << "verify.max_translation_m = " << verify.max_translation_m << "\n"
     << "verify.max_rotation_deg = " << verify.max_rotation_deg << "\n"
+    << "refine.enabled = " << (refine_enabled ? "true" : "false") << "\n"
+    << "refine.pixel_sigma = " << refine.pixel_sigma << "\n"
+    << "refine.depth_noise_coeff = " << refine.depth_noise_coeff << "\n"
+    << "refine.huber_sigmas = " << refine.huber_sigmas << "\n"
+    << "refine.inlier_sigmas = " << refine.inlier_sigmas << "\n"
+    << "keyframe_inlier_ratio = " << keyframe_inlier_ratio << "\n"
+    << "undistort = " << (undistort ? "true" : "false") << "\n"
     << "max_rejected_run = " << max_rejected_run << "\n"
     << "seed = " << seed << "\n";
   return s.str();
@@ -57,62 +80,99 @@ Odometry::Odometry(const OdometryOptions& options, const Calibration& calib)
     : options_(options), calib_(calib), extractor_(options.features), rng_(options.seed) {
   options_.Check();
   calib_.Check();
+  if (!options_.undistort) calib_.dist_ir = {0, 0, 0, 0, 0};
 }
 
 FrameResult Odometry::Process(const Frame& frame) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Features features = extractor_.Extract(frame.bgr);
+  const double seconds = Since(t0);
+  FrameResult r = Process(frame, std::move(features));
+  r.times.features = seconds;
+  return r;
+}
+
+RansacResult Odometry::Estimate(const Reference& ref, const Features& cur, const cv::Mat& depth_m,
+                                FrameResult* r, std::string* reason) {
+  auto t0 = std::chrono::steady_clock::now();
+  const std::vector<cv::DMatch> matches = MatchFeatures(options_.matching, ref.features, cur);
+  r->times.matching += Since(t0);
+  r->matches = static_cast<int>(matches.size());
+
+  t0 = std::chrono::steady_clock::now();
+  const std::vector<PointPair> pairs = LiftMatches(calib_, ref.depth_m, depth_m, ref.features, cur, matches);
+  r->times.lifting += Since(t0);
+  r->pairs = static_cast<int>(pairs.size());
+
+  t0 = std::chrono::steady_clock::now();
+  RansacResult ransac = EstimateRigidRansac(options_.ransac, pairs, rng_);
+  if (ransac.success && options_.refine_enabled) {
+    // Refine on the RANSAC inliers, re-select inliers by whitened error, refine again.
+    const double f = 0.5 * (calib_.fx + calib_.fy);
+    Rigid3d T = RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
+    std::vector<int> inliers;
+    for (size_t k = 0; k < pairs.size(); ++k)
+      if (WhitenedError(options_.refine, f, pairs[k], T) < options_.refine.inlier_sigmas)
+        inliers.push_back(static_cast<int>(k));
+    if (inliers.size() >= 3) {
+      T = RefineMotion(options_.refine, f, pairs, inliers, T).prev_from_cur;
+      ransac.inliers = std::move(inliers);
+      ransac.prev_from_cur = T;
+    }
+  }
+  r->times.ransac += Since(t0);
+  r->inliers = static_cast<int>(ransac.inliers.size());
+  *reason = CheckMotion(options_.verify, ransac);
+  return ransac;
+}
+
+FrameResult Odometry::Process(const Frame& frame, Features features) {
   FrameResult r;
   r.frame = frame.index;
   r.timestamp = frame.timestamp;
-
-  auto t0 = std::chrono::steady_clock::now();
-  Features features = extractor_.Extract(frame.bgr);
-  r.times.features = Since(t0);
   r.features = static_cast<int>(features.size());
+  Reference cur{std::move(features), frame.depth_m, Rigid3d::Identity(), frame.index, -1};
 
-  if (!has_reference_) {
-    has_reference_ = true;
-    ref_features_ = std::move(features);
-    ref_depth_ = frame.depth_m;
-    r.world_from_cam = world_from_ref_;
+  if (!started_) {
+    started_ = true;
+    key_ = last_ = cur;
     r.status = FrameStatus::kFirst;
     return r;
   }
 
-  t0 = std::chrono::steady_clock::now();
-  const std::vector<cv::DMatch> matches = MatchFeatures(options_.matching, ref_features_, features);
-  r.times.matching = Since(t0);
-  r.matches = static_cast<int>(matches.size());
+  RansacResult motion = Estimate(key_, cur.features, cur.depth_m, &r, &r.reason);
+  if (!r.reason.empty() && last_.frame != key_.frame) {
+    // The keyframe is out of reach: try the last accepted frame, which then becomes the keyframe.
+    std::string reason;
+    RansacResult fallback = Estimate(last_, cur.features, cur.depth_m, &r, &reason);
+    if (reason.empty()) {
+      key_ = last_;
+      motion = std::move(fallback);
+      r.reason.clear();
+    }
+  }
 
-  t0 = std::chrono::steady_clock::now();
-  const std::vector<PointPair> pairs =
-      LiftMatches(calib_, ref_depth_, frame.depth_m, ref_features_, features, matches);
-  r.times.lifting = Since(t0);
-  r.pairs = static_cast<int>(pairs.size());
-
-  t0 = std::chrono::steady_clock::now();
-  const RansacResult ransac = EstimateRigidRansac(options_.ransac, pairs, rng_);
-  r.times.ransac = Since(t0);
-  r.inliers = static_cast<int>(ransac.inliers.size());
-
-  r.reason = CheckMotion(options_.verify, ransac);
   if (r.reason.empty()) {
-    // world_from_cur = world_from_ref * ref_from_cur; the current frame becomes the reference.
-    world_from_ref_ = world_from_ref_ * ransac.prev_from_cur;
-    world_from_ref_.linear() = NearestRotation(world_from_ref_.linear());
-    ref_features_ = std::move(features);
-    ref_depth_ = frame.depth_m;
+    // world_from_cur = world_from_key * key_from_cur.
+    cur.world_from_cam = key_.world_from_cam * motion.prev_from_cur;
+    cur.world_from_cam.linear() = NearestRotation(cur.world_from_cam.linear());
+    if (key_.first_inliers < 0) key_.first_inliers = r.inliers;
+    if (!(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
+          options_.keyframe_inlier_ratio > 0))
+      key_ = cur;
+    last_ = std::move(cur);
     rejected_run_ = 0;
     r.status = FrameStatus::kAccepted;
   } else if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run) {
-    // The reference is out of reach: restart from this frame at the last known pose.
-    ref_features_ = std::move(features);
-    ref_depth_ = frame.depth_m;
+    // The references are out of reach: restart from this frame at the last known pose.
+    cur.world_from_cam = last_.world_from_cam;
+    key_ = last_ = std::move(cur);
     rejected_run_ = 0;
     r.status = FrameStatus::kLost;
   } else {
     r.status = FrameStatus::kRejected;
   }
-  r.world_from_cam = world_from_ref_;
+  r.world_from_cam = last_.world_from_cam;
   return r;
 }
 

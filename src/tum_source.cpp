@@ -82,7 +82,8 @@ std::optional<Frame> TumSource::Next() {
   const std::string depth_path = (fs::path(folder_) / p.depth.path).string();
   Frame f;
   f.index = static_cast<int>(next_);
-  f.timestamp = p.rgb.timestamp;
+  f.timestamp = p.depth.timestamp;
+  f.color_timestamp = p.rgb.timestamp;
   f.name = p.rgb.path;
   f.bgr = cv::imread(rgb_path, cv::IMREAD_COLOR);
   if (f.bgr.empty())

@@ -44,12 +44,14 @@ TEST_CASE("TumSource pairs each rgb frame with the nearest depth frame within 0.
   CHECK(source.unpaired()[0].timestamp == 1.20);
   auto f0 = source.Next();
   REQUIRE(f0);
-  CHECK(f0->timestamp == 1.00);
+  CHECK(f0->color_timestamp == 1.00);
+  CHECK(f0->timestamp == 0.995);  // poses carry the depth image's time
   CHECK(f0->depth_m.type() == CV_32FC1);
   CHECK(f0->depth_m.at<float>(0, 0) == Approx(1.0));  // depth 0 (5000 / 5000 per m)
   auto f1 = source.Next();
   REQUIRE(f1);
-  CHECK(f1->timestamp == 1.10);
+  CHECK(f1->color_timestamp == 1.10);
+  CHECK(f1->timestamp == 1.09);
   CHECK(f1->depth_m.at<float>(0, 0) == Approx(5100.0 / 5000));  // 1.09 is nearer than 1.115
   CHECK_FALSE(source.Next());
 }

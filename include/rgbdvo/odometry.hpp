@@ -11,6 +11,7 @@
 #include "rgbdvo/matching.hpp"
 #include "rgbdvo/motion_check.hpp"
 #include "rgbdvo/ransac.hpp"
+#include "rgbdvo/refine.hpp"
 
 namespace rgbdvo {
 
@@ -19,14 +20,29 @@ struct OdometryOptions {
   MatchOptions matching;
   RansacOptions ransac;
   MotionCheckOptions verify;
+  // Refine the RANSAC motion on reprojection and depth residuals (false = the paper's SVD only).
+  bool refine_enabled = true;
+  RefineOptions refine;
+  // Keyframes: frames are matched against the keyframe, which is replaced by the current frame
+  // when its inliers fall below this fraction of those of the keyframe's first match (drift
+  // then grows per keyframe, not per frame). 0 = every accepted frame is the next reference,
+  // as in the paper.
+  double keyframe_inlier_ratio = 0.5;
   // After this many rejected frames in a row the reference is given up: the current frame
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
   int max_rejected_run = 30;
+  // Use the calibration's lens distortion (dist_ir) when lifting pixels (the paper: no).
+  bool undistort = true;
   uint32_t seed = 42;  // RANSAC random generator seed (fixed: runs are reproducible)
   void Check() const;
   std::string ToString() const;  // the effective configuration, one "key = value" per line
 };
+
+// Named configurations: "default" (rgbdvo's most accurate) and "paper" (exactly Fiala & Ufkes
+// 2011: ratio-test matching between successive frames, 4-point RANSAC at 1.5 cm, SVD refinement,
+// pinhole model). Throws std::invalid_argument for another name.
+OdometryOptions PresetOptions(const std::string& name);
 
 enum class FrameStatus { kFirst, kAccepted, kRejected, kLost };
 
@@ -51,22 +67,37 @@ struct FrameResult {
 };
 
 // Policy after a rejected frame: its pose is reported as the last accepted pose (status
-// rejected) and the next frame is matched against the last accepted frame (the reference), so
-// the motion across the rejected frame is still measured, not lost.
+// rejected) and the next frame is matched against the reference again (the keyframe, then
+// the last accepted frame), never against the rejected one, so the motion across the rejected
+// frame is still measured, not lost.
 class Odometry {
  public:
   Odometry(const OdometryOptions& options, const Calibration& calib);
+  // Extracts features from frame.bgr, then as below.
   FrameResult Process(const Frame& frame);
+  // With features already extracted from frame.bgr (e.g. on another thread).
+  FrameResult Process(const Frame& frame, Features features);
+  const SiftExtractor& extractor() const { return extractor_; }
 
  private:
+  struct Reference {
+    Features features;
+    cv::Mat depth_m;
+    Rigid3d world_from_cam = Rigid3d::Identity();
+    int frame = -1;
+    int first_inliers = -1;  // inliers of the first frame matched against it
+  };
+  // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts.
+  RansacResult Estimate(const Reference& ref, const Features& cur, const cv::Mat& depth_m,
+                        FrameResult* r, std::string* reason);
+
   OdometryOptions options_;
   Calibration calib_;
   SiftExtractor extractor_;
   Rng rng_;
-  bool has_reference_ = false;
-  Features ref_features_;
-  cv::Mat ref_depth_;
-  Rigid3d world_from_ref_ = Rigid3d::Identity();
+  bool started_ = false;
+  Reference key_;   // what frames are matched against
+  Reference last_;  // the last accepted frame (fallback when the keyframe fails)
   int rejected_run_ = 0;
 };
 
