@@ -1,0 +1,45 @@
+#pragma once
+// Least-squares fit of the colour -> IR pixel mapping of paper section 2.1, eq. 1:
+// u_ir = A * u_vis + B and v_ir = C * v_vis + D, from pixels identified in both images.
+
+#include <string>
+#include <vector>
+
+namespace rgbdvo {
+
+// One world point seen at (u_vis, v_vis) in the colour image and (u_ir, v_ir) in the IR/depth
+// image, pixels.
+struct PixelPair {
+  double u_vis = 0, v_vis = 0, u_ir = 0, v_ir = 0;
+};
+
+struct MappingFitOptions {
+  int min_pairs = 3;            // fewer pairs are refused (2 unknowns per axis + 1 to check)
+  double min_spread_px = 10.0;  // u_vis (and v_vis) must span at least this, pixels
+  bool robust = false;          // flag outlier pairs and fit without them
+  double outlier_px = 4.0;      // robust: a pair whose residual exceeds this is an outlier, px
+  void Check() const;           // throws std::invalid_argument naming the field
+};
+
+struct MappingFit {
+  bool success = false;
+  std::string reason;  // why the fit failed (empty on success)
+  double A = 1, B = 0, C = 1, D = 0;
+  int num_pairs = 0;    // pairs given
+  int num_inliers = 0;  // pairs used by the final fit (all unless robust)
+  double rms_px = 0;    // RMS of the inliers' residuals, pixels
+  // Per given pair: |(A u_vis + B, C v_vis + D) - (u_ir, v_ir)|, pixels, and whether the robust
+  // fit set it aside. Filled on success only.
+  std::vector<double> residual_px;
+  std::vector<bool> outlier;
+  std::string Brief() const;  // one line: A-D, pairs, outliers, RMS (or the reason)
+};
+
+// Fits (A, B) to the (u_vis, u_ir) and (C, D) to the (v_vis, v_ir) by linear least squares.
+// Fails (success = false, reason says why) with fewer than options.min_pairs pairs, when the
+// u_vis or v_vis span less than min_spread_px (all equal: the scale is undetermined), or when
+// A or C comes out zero. Robust mode removes the worst pair while its residual exceeds
+// outlier_px and min_pairs would remain, refitting each time.
+MappingFit FitMapping(const MappingFitOptions& options, const std::vector<PixelPair>& pairs);
+
+}  // namespace rgbdvo
