@@ -9,5 +9,6 @@
 namespace rgbdvo::cli {
 
 void AddRunCommand(CLI::App& app);
+void AddCalibrateCommand(CLI::App& app);
 
 }  // namespace rgbdvo::cli

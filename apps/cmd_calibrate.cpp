@@ -1,0 +1,138 @@
+// `rgbdvo calibrate`: fit A-D of paper eq. 1 from point pairs, from a file or clicked in a window.
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <opencv2/highgui.hpp>
+
+#include "commands.hpp"
+#include "rgbdvo/calibrate.hpp"
+#include "rgbdvo/calibration_clicker.hpp"
+#include "rgbdvo/frame_cache.hpp"
+#include "rgbdvo/open_source.hpp"
+#include "rgbdvo/pixel_pairs_file.hpp"
+
+namespace rgbdvo::cli {
+namespace {
+
+constexpr const char* kWindow = "rgbdvo calibrate";
+
+struct CalibrateArgs {
+  std::string source, pairs, out, calib, save_pairs;
+  int start = 0;
+  SourceOptions source_options;
+  ClickerOptions clicker;
+};
+
+Calibration Base(const CalibrateArgs& a) {
+  return a.calib.empty() ? Calibration{} : LoadCalibration(a.calib);
+}
+
+int FromFile(const CalibrateArgs& a) {
+  const Calibration base = Base(a);
+  const std::vector<PixelPair> pairs = LoadPixelPairs(a.pairs);
+  const MappingFit fit = FitMapping(a.clicker.fit, pairs);
+  std::cout << FitReport(fit, pairs);
+  if (!fit.success) throw std::runtime_error(a.pairs + ": " + fit.reason);
+  std::cout << WriteCalibrateOutputs(pairs, fit, base, a.out, a.save_pairs) << std::endl;
+  return 0;
+}
+
+void OnMouse(int event, int x, int y, int, void* user) {
+  auto* clicker = static_cast<CalibrationClicker*>(user);
+  if (event == cv::EVENT_LBUTTONDOWN) clicker->Click(x, y);
+  if (event == cv::EVENT_MOUSEMOVE) clicker->Hover(x, y);
+}
+
+int Interactive(const CalibrateArgs& a) {
+  const Calibration base = Base(a);
+  const std::string pairs_path = a.save_pairs.empty() ? DefaultPairsPath(a.out) : a.save_pairs;
+  if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+    throw std::runtime_error(
+        "no display (DISPLAY is not set) for the calibration window; "
+        "use --pairs FILE without SOURCE to fit from a pairs file");
+  std::unique_ptr<FrameSource> source = OpenRecording(a.source, a.source_options);
+  FrameCache frames(*source);
+  int index = a.start;
+  if (!frames.At(index))
+    throw std::runtime_error(a.source + ": no frame " + std::to_string(index) + " (" +
+                             std::to_string(frames.size()) + " frames)");
+  CalibrationClicker clicker(a.clicker,
+                             a.pairs.empty() ? std::vector<PixelPair>{} : LoadPixelPairs(a.pairs));
+  clicker.SetFrame(*frames.At(index));
+  std::cout << "# source: " << source->Describe() << "\n# window '" << kWindow << "': pairs go to "
+            << pairs_path << ", calibration to " << a.out << std::endl;
+
+  cv::namedWindow(kWindow, cv::WINDOW_AUTOSIZE | cv::WINDOW_GUI_NORMAL);
+  cv::setMouseCallback(kWindow, OnMouse, &clicker);
+  for (;;) {
+    cv::imshow(kWindow, clicker.Render());
+    const int key = cv::waitKey(20);
+    if (cv::getWindowProperty(kWindow, cv::WND_PROP_VISIBLE) < 1) break;  // window closed
+    const ClickerAction action = clicker.Key(key);
+    if (action == ClickerAction::kQuit) break;
+    if (action == ClickerAction::kSave) {
+      const std::vector<PixelPair> pairs = clicker.Pairs();
+      std::cout << FitReport(clicker.fit(), pairs);
+      const std::string msg = WriteCalibrateOutputs(pairs, clicker.fit(), base, a.out, pairs_path);
+      std::cout << msg << std::endl;
+      clicker.SetMessage(msg);
+      clicker.MarkSaved();
+    }
+    if (action == ClickerAction::kNextFrame || action == ClickerAction::kPrevFrame) {
+      const int step =
+          action == ClickerAction::kNextFrame ? a.clicker.frame_step : -a.clicker.frame_step;
+      int target = std::max(0, index + step);
+      if (!frames.At(target)) target = frames.size() - 1;  // clamp at the last frame
+      if (target != index) clicker.SetFrame(*frames.At(index = target));
+      const bool last = frames.ended() && index == frames.size() - 1;
+      clicker.SetMessage("frame " + std::to_string(index) + (last ? " (last)" : ""));
+      std::cout << "frame " << index << (last ? " (last)" : "") << std::endl;
+    }
+  }
+  cv::destroyAllWindows();
+  if (clicker.dirty()) std::cout << "quit without saving the last changes" << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void AddCalibrateCommand(CLI::App& app) {
+  auto args = std::make_shared<CalibrateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "calibrate",
+      "fit the colour->IR mapping A-D (paper eq. 1): click point pairs in a window over a "
+      "recorded SOURCE, or fit from --pairs FILE");
+  cmd->add_option("source", args->source, "recording folder to click pairs in (omit with --pairs)");
+  cmd->add_option("--pairs", args->pairs,
+                  "pairs CSV (u_vis,v_vis,u_ir,v_ir): fit from it, or with SOURCE start from it");
+  cmd->add_option("--out", args->out, "calibration YAML to write")->required();
+  cmd->add_option("--calib", args->calib,
+                  "base calibration YAML: K_ir, depth range and description are kept");
+  cmd->add_option("--save-pairs", args->save_pairs,
+                  "where clicked pairs are saved (default: OUT with .pairs.csv)");
+  cmd->add_flag("--robust", args->clicker.fit.robust, "set aside pairs with large residuals");
+  cmd->add_option("--outlier-px", args->clicker.fit.outlier_px, "robust: outlier residual, px")
+      ->capture_default_str();
+  cmd->add_option("--min-spread", args->clicker.fit.min_spread_px,
+                  "refuse pairs whose u or v span less, px")
+      ->capture_default_str();
+  cmd->add_option("--scale", args->clicker.scale, "window: screen pixels per image pixel")
+      ->capture_default_str();
+  cmd->add_option("--step", args->clicker.frame_step, "window: frames per n/p key")
+      ->capture_default_str();
+  cmd->add_option("--start", args->start, "window: first frame shown")->capture_default_str();
+  cmd->add_option("--depth-scale", args->source_options.tum.depth_units_per_m,
+                  "TUM depth units per metre")
+      ->capture_default_str();
+  cmd->add_option("--max-dt", args->source_options.tum.max_time_diff_s,
+                  "max rgb-depth time difference, s")
+      ->capture_default_str();
+  cmd->callback([args] {
+    if (args->source.empty() && args->pairs.empty())
+      throw CLI::ValidationError("calibrate", "give a SOURCE folder (window) or --pairs FILE");
+    const int code = args->source.empty() ? FromFile(*args) : Interactive(*args);
+    if (code != 0) throw CLI::RuntimeError(code);
+  });
+}
+
+}  // namespace rgbdvo::cli
