@@ -209,6 +209,7 @@ cv::Mat CalibrationClicker::Render() const {
   place(vis_bgr_, false, vis_bgr_.empty() ? "colour (no frame)" : "colour");
   place(depth_bgr_, true, "depth (colour-mapped)");
   const int image_h = size.height - options_.panel_height_px;
+  const cv::Mat images = canvas(cv::Rect(0, 0, size.width, image_h)).clone();  // for the magnifier
   cv::line(canvas, cv::Point(cvRound(VisSize().width * s), 0),
            cv::Point(cvRound(VisSize().width * s), image_h - 1), cv::Scalar(255, 255, 255), 1);
 
@@ -239,7 +240,6 @@ cv::Mat CalibrationClicker::Render() const {
       Cross(canvas, ToCanvas(twin, !pending_->ir), kPending);
     }
   }
-  const cv::Mat images = canvas(cv::Rect(0, 0, size.width, image_h)).clone();
   DrawPanel(canvas);
   DrawMagnifier(canvas, images);
   return canvas;
@@ -251,28 +251,44 @@ void CalibrationClicker::DrawPanel(cv::Mat& canvas) const {
   const int line_h = 19;
   int y = y0 + 17;
   const std::string step = std::to_string(options_.frame_step);
+  // The long wording where it fits (1280 px canvas), a short one on narrow canvases.
+  const auto pick = [&](const std::string& full, const std::string& brief) {
+    return TextWidth(full) <= text_right - 8 ? full : brief;
+  };
+  const std::string robust = options_.fit.robust ? "(on)" : "(off)";
   Text(canvas,
-       "keys: u undo | n/p frame +/-" + step + " | r robust fit " +
-           (options_.fit.robust ? "(on)" : "(off)") + " | s save | q quit",
+       pick("keys: u undo | n/p frame +/-" + step + " | r robust fit " + robust +
+                " | s save | q quit    (magenta x: where the fit puts the twin)",
+            "u undo | n/p frame +/-" + step + " | r robust " + robust + " | s save | q quit"),
        {8, y}, kText);
   y += line_h;
-  std::string state = "frame " +
-                      (frame_index_ < 0 ? std::string("-") : std::to_string(frame_index_)) +
-                      "  pairs " + std::to_string(pairs_.size()) + "  ";
-  if (!pending_)
-    state += "click a sharp point (a corner ~3 m away) in either image";
-  else
-    state += std::string("now click the same point in the ") + (pending_->ir ? "colour" : "depth") +
-             " image (u: cancel)";
+  const std::string frame = frame_index_ < 0 ? std::string("-") : std::to_string(frame_index_);
+  const std::string count = std::to_string(pairs_.size());
+  std::string state;
+  if (!pending_) {
+    state = pick("frame " + frame + "  pairs " + count +
+                     "  click a sharp point (a corner ~3 m away) in either image",
+                 "frame " + frame + ", " + count + " pairs: click a corner in either image");
+  } else {
+    const std::string other = pending_->ir ? "colour" : "depth";
+    state =
+        pick("frame " + frame + "  pairs " + count + "  now click the same point in the " + other +
+                 " image (u: cancel)",
+             "frame " + frame + ", " + count + " pairs: now click it in the " + other + " image");
+  }
   Text(canvas, state, {8, y}, pending_ ? kPending : kText);
   y += line_h;
   if (fit_.success) {
-    std::string f = "fit: A=" + Format("%.4f", fit_.A) + " B=" + Format("%.2f", fit_.B) +
-                    " C=" + Format("%.4f", fit_.C) + " D=" + Format("%.2f", fit_.D) + "  RMS " +
-                    Format("%.2f", fit_.rms_px) + " px";
-    if (fit_.num_inliers < fit_.num_pairs)
-      f += "  (robust: " + std::to_string(fit_.num_pairs - fit_.num_inliers) +
-           " outliers set aside)";
+    const std::string abcd = "A=" + Format("%.4f", fit_.A) + " B=" + Format("%.2f", fit_.B) +
+                             " C=" + Format("%.4f", fit_.C) + " D=" + Format("%.2f", fit_.D);
+    const std::string rms = Format("%.2f", fit_.rms_px);
+    const int outliers = fit_.num_pairs - fit_.num_inliers;
+    const std::string f =
+        outliers == 0
+            ? pick("fit: " + abcd + "  RMS " + rms + " px", abcd + " RMS " + rms)
+            : pick("fit: " + abcd + "  RMS " + rms + " px  (robust: " + std::to_string(outliers) +
+                       " outlier(s) set aside)",
+                   abcd + " RMS " + rms + ", " + std::to_string(outliers) + " out");
     Text(canvas, f, {8, y}, kGood);
   } else {
     Text(canvas, "fit: " + fit_.reason, {8, y}, kBad);

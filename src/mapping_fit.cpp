@@ -50,7 +50,7 @@ std::string MappingFit::Brief() const {
   if (!success) return "fit failed: " + reason;
   s << "A=" << A << " B=" << B << " C=" << C << " D=" << D << " from " << num_inliers << " of "
     << num_pairs << " pairs";
-  if (num_inliers < num_pairs) s << " (" << num_pairs - num_inliers << " outliers set aside)";
+  if (num_inliers < num_pairs) s << " (" << num_pairs - num_inliers << " outlier(s) set aside)";
   s << ", RMS " << rms_px << " px";
   return s.str();
 }

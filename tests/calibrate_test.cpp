@@ -69,7 +69,7 @@ TEST_CASE("FitReport lists each pair's residual and marks outliers") {
   MappingFitOptions o;
   o.robust = true;
   const std::string report = FitReport(FitMapping(o, pairs), pairs);
-  CHECK_THAT(report, Catch::Contains("from 5 of 6 pairs (1 outliers set aside)"));
+  CHECK_THAT(report, Catch::Contains("from 5 of 6 pairs (1 outlier(s) set aside)"));
   CHECK_THAT(report,
              Catch::Contains("   3   300.0    40.0   290.0    78.0     30.00  outlier (not used)"));
   CHECK_THAT(report, Catch::Contains("   1    50.0    40.0    65.0    48.0      0.00\n"));

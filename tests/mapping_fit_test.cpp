@@ -87,7 +87,7 @@ TEST_CASE("Robust FitMapping flags a bad click and fits without it") {
   CHECK(fit.residual_px[5] > 20);
   CHECK(fit.rms_px < 1.5);
   CHECK(fit.A == Approx(0.9).margin(0.01));
-  CHECK_THAT(fit.Brief(), Catch::Contains("1 outliers set aside"));
+  CHECK_THAT(fit.Brief(), Catch::Contains("1 outlier(s) set aside"));
 }
 
 TEST_CASE("FitMapping refuses fewer than 3 pairs") {
