@@ -69,6 +69,7 @@ int Interactive(const CalibrateArgs& a) {
     const int key = cv::waitKey(20);
     if (cv::getWindowProperty(kWindow, cv::WND_PROP_VISIBLE) < 1) break;  // window closed
     const ClickerAction action = clicker.Key(key);
+    for (const std::string& line : clicker.TakeLog()) std::cout << line << std::endl;
     if (action == ClickerAction::kQuit) break;
     if (action == ClickerAction::kSave) {
       const std::vector<PixelPair> pairs = clicker.Pairs();

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <utility>
 
 namespace rgbdvo {
 namespace {
@@ -129,6 +130,8 @@ void CalibrationClicker::Click(int x, int y) {
   quit_asked_ = false;
   if (!pending_ || pending_->ir == at->ir) {
     pending_ = at;  // first point, or a corrected one in the same image
+    Log(std::string("point in the ") + (at->ir ? "depth" : "colour") + " image at " +
+        Format("%.1f", at->pt.x) + "," + Format("%.1f", at->pt.y));
     return;
   }
   const Pending& vis = at->ir ? *pending_ : *at;
@@ -137,9 +140,17 @@ void CalibrationClicker::Click(int x, int y) {
   pending_.reset();
   dirty_ = true;
   Refit();
+  const PixelPair& p = pairs_.back().pair;
+  Log("pair " + std::to_string(pairs_.size()) + ": " + Format("%.1f", p.u_vis) + "," +
+      Format("%.1f", p.v_vis) + " -> " + Format("%.1f", p.u_ir) + "," + Format("%.1f", p.v_ir) +
+      "; " + fit_.Brief());
 }
 
 void CalibrationClicker::Hover(int x, int y) { hover_ = {x, y}; }
+
+void CalibrationClicker::Log(const std::string& line) { log_.push_back(line); }
+
+std::vector<std::string> CalibrationClicker::TakeLog() { return std::exchange(log_, {}); }
 
 ClickerAction CalibrationClicker::Key(int key) {
   if (key < 0) return ClickerAction::kNone;
@@ -153,16 +164,21 @@ ClickerAction CalibrationClicker::Key(int key) {
     case 127:
       if (pending_) {
         pending_.reset();
+        Log("undo: pending point dropped");
       } else if (!pairs_.empty()) {
         pairs_.pop_back();
         dirty_ = true;
         Refit();
+        Log("undo: pair " + std::to_string(pairs_.size() + 1) + " removed; " + fit_.Brief());
+      } else {
+        Log("undo: nothing to undo");
       }
       return ClickerAction::kNone;
     case 'r':
     case 'R':
       options_.fit.robust = !options_.fit.robust;
       Refit();
+      Log(std::string("robust fit ") + (options_.fit.robust ? "on" : "off") + "; " + fit_.Brief());
       return ClickerAction::kNone;
     case 'n':
     case 'N':
@@ -183,6 +199,7 @@ ClickerAction CalibrationClicker::Key(int key) {
   }
   quit_asked_ = true;
   message_ = "unsaved pairs: press s to save, or q again to quit without saving";
+  Log(message_);
   return ClickerAction::kNone;
 }
 

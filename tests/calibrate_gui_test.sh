@@ -65,19 +65,26 @@ xdotool windowfocus --sync "$wid"
 click() { xdotool mousemove --sync $((X + $1)) $((Y + $2)) click 1; }
 vis() { click "$1" "$2"; }
 ir() { click $((640 + $1)) "$2"; }
-key() { xdotool key --clearmodifiers "$1"; }
+# A key is acted on after cv::waitKey returns, which may be after later clicks were already
+# dispatched; so after each key wait for the line rgbdvo prints for it before going on.
+key() {
+  local pattern=$2
+  xdotool key --clearmodifiers "$1"
+  wait_for 20 'grep -q -- "$pattern" "$work/app.log"' || fail "no '$pattern' printed after the $1 key"
+}
 
 # Pairs of the mapping u_ir = 0.9 u_vis + 20, v_ir = 0.9 v_vis + 30.
 vis 100 100; vis 110 120; ir 119 138        # pair 1; the second colour click moves the first
 ir 290 210; vis 300 200                     # pair 2, IR image first
-vis 400 300; ir 500 100; key u              # a wrong pair, undone
-vis 50 50; key u                            # a pending point, cancelled
+vis 400 300; ir 500 100                     # a wrong pair (3) ...
+key u "^undo: pair 3 removed"               # ... undone
+vis 50 50                                   # a pending point ...
+key u "^undo: pending point dropped"        # ... cancelled
 vis 500 400; ir 470 390                     # pair 3
-key n                                       # next frame (frame 10)
+key n "^frame 10$"                          # next frame
 vis 200 350; click 100 550; ir 200 345      # pair 4; the click on the panel is ignored
-key s
-wait_for 20 'grep -q "wrote .*c.yaml" "$work/app.log"' || fail "no 'wrote ... c.yaml' after the s key"
-key q
+key s "wrote .*c.yaml"
+xdotool key --clearmodifiers q
 wait_for 20 '! kill -0 $app_pid 2>/dev/null' || fail "rgbdvo still running 20 s after the q key"
 wait "$app_pid" || fail "rgbdvo calibrate exited with status $?"
 app_pid=""
@@ -93,7 +100,6 @@ expected="u_vis,v_vis,u_ir,v_ir
 $(cat "$work/c.pairs.csv")
 expected:
 $expected"
-grep -qx "frame 10" "$work/app.log" || fail "the n key did not step to frame 10"
 # The fit recovers the mapping exactly (the clicks are exact pixels) and keeps K_ir of the base.
 check() {
   local got

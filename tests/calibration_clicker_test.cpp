@@ -87,6 +87,15 @@ TEST_CASE("Clicker: the fit follows every pair and undo") {
   c.Key(8);  // Backspace undoes too
   CHECK(c.Pairs().size() == 2);
   CHECK_FALSE(c.fit().success);
+  const std::vector<std::string> log = c.TakeLog();
+  REQUIRE(log.size() == 10);
+  CHECK(log[0] == "point in the colour image at 100.0,100.0");
+  CHECK(log[1] == "pair 2: 100.0,100.0 -> 110.0,120.0; fit failed: need at least 3 pairs, have 2");
+  CHECK_THAT(log[3], Catch::StartsWith("pair 3: 500.0,400.0 -> 470.0,390.0; A=0.9 B=20"));
+  CHECK_THAT(log[6], Catch::StartsWith("undo: pair 4 removed; A=0.9"));
+  CHECK(log[8] == "undo: pending point dropped");
+  CHECK(log[9] == "undo: pair 3 removed; fit failed: need at least 3 pairs, have 2");
+  CHECK(c.TakeLog().empty());
 }
 
 TEST_CASE("Clicker: r turns the robust fit on and flags the bad pair") {

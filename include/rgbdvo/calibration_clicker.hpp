@@ -55,6 +55,9 @@ class CalibrationClicker {
   // One line shown at the bottom (e.g. "wrote calib.yaml").
   void SetMessage(const std::string& message) { message_ = message; }
   void MarkSaved() { dirty_ = false; }
+  // What happened since the last call, one line per event (a point, a pair with the new fit,
+  // an undo, robust on/off), for the terminal; the window test waits for these lines.
+  std::vector<std::string> TakeLog();
 
   cv::Mat Render() const;  // CV_8UC3 canvas of CanvasSize()
   cv::Size CanvasSize() const;
@@ -75,6 +78,7 @@ class CalibrationClicker {
   // Which image the canvas pixel falls in, and the image point; nullopt outside both.
   std::optional<Pending> FromCanvas(int x, int y) const;
   void Refit();
+  void Log(const std::string& line);
   void DrawPanel(cv::Mat& canvas) const;
   void DrawMagnifier(cv::Mat& canvas, const cv::Mat& images) const;
   cv::Size VisSize() const;
@@ -89,6 +93,7 @@ class CalibrationClicker {
   double timestamp_ = 0;
   cv::Point hover_{-1, -1};
   std::string message_;
+  std::vector<std::string> log_;
   bool dirty_ = false;
   bool quit_asked_ = false;
 };
