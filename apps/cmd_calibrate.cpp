@@ -108,7 +108,7 @@ void AddCalibrateCommand(CLI::App& app) {
                   "pairs CSV (u_vis,v_vis,u_ir,v_ir): fit from it, or with SOURCE start from it");
   cmd->add_option("--out", args->out, "calibration YAML to write")->required();
   cmd->add_option("--calib", args->calib,
-                  "base calibration YAML: K_ir, depth range and description are kept");
+                  "base calibration YAML: all but A-D is kept (K_ir, dist_ir, depth range)");
   cmd->add_option("--save-pairs", args->save_pairs,
                   "where clicked pairs are saved (default: OUT with .pairs.csv)");
   cmd->add_flag("--robust", args->clicker.fit.robust, "set aside pairs with large residuals");

@@ -28,6 +28,7 @@ TEST_CASE("The fitted calibration round-trips through YAML and keeps the base's 
   Calibration base;
   base.fx = 580.5, base.fy = 579.5, base.cx = 317.25, base.cy = 242.75;
   base.min_depth_m = 0.6, base.max_depth_m = 4.0;
+  base.dist_ir = {0.1, -0.2, 0.001, -0.002, 0.05};
   base.description = "my kinect";
   const MappingFit fit = FitMapping({}, ExactPairs());
   REQUIRE(fit.success);
@@ -44,6 +45,7 @@ TEST_CASE("The fitted calibration round-trips through YAML and keeps the base's 
   CHECK(c.fy == base.fy);
   CHECK(c.cx == base.cx);
   CHECK(c.cy == base.cy);
+  CHECK(c.dist_ir == base.dist_ir);
   CHECK(c.min_depth_m == base.min_depth_m);
   CHECK(c.max_depth_m == base.max_depth_m);
   CHECK_THAT(c.description,
