@@ -39,6 +39,8 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
             "do not require mutual nearest neighbours");
   AddSwitch("--mutual", [](O& o) -> bool& { return o.matching.mutual; }, true,
             "require mutual nearest neighbours (default; not in --preset paper)");
+  Add<double>("--depth-jump", [](O& o) -> double& { return o.lifting.max_depth_jump_ratio; },
+              "bilinear depth, refused across jumps above this fraction (0 = nearest pixel)");
   Add<int>("--trials", [](O& o) -> int& { return o.ransac.max_trials; }, "RANSAC hypotheses (paper: 200)");
   Add<int>("--sample-size", [](O& o) -> int& { return o.ransac.sample_size; },
            "matches per RANSAC hypothesis (paper: 4)");

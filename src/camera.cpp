@@ -54,10 +54,32 @@ std::optional<double> SampleDepth(const Calibration& c, const cv::Mat& depth_m,
   return d;
 }
 
+std::optional<double> SampleDepthBilinear(const Calibration& c, const cv::Mat& depth_m,
+                                          const Eigen::Vector2d& uv_ir, double max_jump_ratio) {
+  const double u = uv_ir.x(), v = uv_ir.y();
+  if (!(u >= 0 && v >= 0 && u <= depth_m.cols - 1 && v <= depth_m.rows - 1)) return std::nullopt;
+  const int u0 = std::min(static_cast<int>(u), depth_m.cols - 2);
+  const int v0 = std::min(static_cast<int>(v), depth_m.rows - 2);
+  const double au = u - u0, av = v - v0;
+  const float* row0 = depth_m.ptr<float>(v0);
+  const float* row1 = depth_m.ptr<float>(v0 + 1);
+  const double d[4] = {row0[u0], row0[u0 + 1], row1[u0], row1[u0 + 1]};
+  double lo = d[0], hi = d[0];
+  for (double x : d) {
+    if (!(x > 0) || x < c.min_depth_m || x > c.max_depth_m) return std::nullopt;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  if (hi - lo > max_jump_ratio * 0.25 * (d[0] + d[1] + d[2] + d[3])) return std::nullopt;
+  return (1 - av) * ((1 - au) * d[0] + au * d[1]) + av * ((1 - au) * d[2] + au * d[3]);
+}
+
 std::optional<Eigen::Vector3d> LiftColorPixel(const Calibration& c, const cv::Mat& depth_m,
-                                              const Eigen::Vector2d& uv_vis) {
+                                              const Eigen::Vector2d& uv_vis, double max_jump_ratio) {
   const Eigen::Vector2d uv_ir = ColorToIr(c, uv_vis);
-  const std::optional<double> d = SampleDepth(c, depth_m, uv_ir);
+  const std::optional<double> d = max_jump_ratio > 0
+                                      ? SampleDepthBilinear(c, depth_m, uv_ir, max_jump_ratio)
+                                      : SampleDepth(c, depth_m, uv_ir);
   if (!d) return std::nullopt;
   return BackProject(c, uv_ir, *d);
 }

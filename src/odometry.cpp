@@ -18,6 +18,7 @@ double Since(std::chrono::steady_clock::time_point t0) {
 void OdometryOptions::Check() const {
   features.Check();
   matching.Check();
+  lifting.Check();
   ransac.Check();
   verify.Check();
   refine.Check();
@@ -34,6 +35,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.refine_enabled = false;       // SVD on the inliers only (eq. 5-10)
     o.keyframe_inlier_ratio = 0;    // successive frames
     o.undistort = false;            // "a perfect pinhole model was used"
+    o.lifting.max_depth_jump_ratio = 0;  // depth at the nearest pixel
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
@@ -48,6 +50,7 @@ std::string OdometryOptions::ToString() const {
     << "features.sigma = " << features.sigma << "\n"
     << "matching.ratio = " << matching.ratio << "\n"
     << "matching.mutual = " << (matching.mutual ? "true" : "false") << "\n"
+    << "lifting.max_depth_jump_ratio = " << lifting.max_depth_jump_ratio << "\n"
     << "ransac.max_trials = " << ransac.max_trials << "\n"
     << "ransac.sample_size = " << ransac.sample_size << "\n"
     << "ransac.inlier_distance_m = " << ransac.inlier_distance_m << "\n"
@@ -100,7 +103,7 @@ RansacResult Odometry::Estimate(const Reference& ref, const Features& cur, const
   r->matches = static_cast<int>(matches.size());
 
   t0 = std::chrono::steady_clock::now();
-  const std::vector<PointPair> pairs = LiftMatches(calib_, ref.depth_m, depth_m, ref.features, cur, matches);
+  const std::vector<PointPair> pairs = LiftMatches(calib_, options_.lifting, ref.depth_m, depth_m, ref.features, cur, matches);
   r->times.lifting += Since(t0);
   r->pairs = static_cast<int>(pairs.size());
 

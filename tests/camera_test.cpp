@@ -95,3 +95,20 @@ TEST_CASE("BackProject removes lens distortion and ProjectIr puts it back") {
   const Eigen::Vector3d corner = BackProject(c, {5, 5}, 2.0), plain = BackProject(pinhole, {5, 5}, 2.0);
   CHECK((corner - plain).norm() * c.fx / 2.0 > 3.0);
 }
+
+TEST_CASE("Bilinear depth interpolates a slope and refuses a depth edge") {
+  Calibration c;
+  cv::Mat depth(10, 10, CV_32F);
+  for (int v = 0; v < 10; ++v)
+    for (int u = 0; u < 10; ++u) depth.at<float>(v, u) = static_cast<float>(2.0 + 0.01 * u);
+  const auto d = SampleDepthBilinear(c, depth, {3.25, 4.5}, 0.03);
+  REQUIRE(d);
+  CHECK(*d == Approx(2.0325));
+  CHECK(SampleDepthBilinear(c, depth, {9.0, 9.0}, 0.03));  // the last pixel is inside
+  CHECK_FALSE(SampleDepthBilinear(c, depth, {9.01, 3.0}, 0.03));
+  depth.at<float>(5, 4) = 3.0f;  // a foreground/background edge next to (3.5, 4.5)
+  CHECK_FALSE(SampleDepthBilinear(c, depth, {3.5, 4.5}, 0.03));
+  depth.at<float>(5, 4) = 0.0f;  // a hole
+  CHECK_FALSE(SampleDepthBilinear(c, depth, {3.5, 4.5}, 0.03));
+  CHECK(SampleDepthBilinear(c, depth, {1.5, 1.5}, 0.03));
+}

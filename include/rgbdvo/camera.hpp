@@ -29,8 +29,16 @@ Eigen::Vector2d ProjectIr(const Calibration& calib, const Eigen::Vector3d& p_in_
 std::optional<double> SampleDepth(const Calibration& calib, const cv::Mat& depth_m,
                                   const Eigen::Vector2d& uv_ir);
 
+// Bilinear depth at the sub-pixel IR position uv_ir from its 4 neighbours, or nullopt when one
+// of them has no reading (or is outside the range or image) or they differ by more than
+// max_jump_ratio * their mean (a depth discontinuity: interpolating across it invents a point).
+std::optional<double> SampleDepthBilinear(const Calibration& calib, const cv::Mat& depth_m,
+                                          const Eigen::Vector2d& uv_ir, double max_jump_ratio);
+
 // The whole chain: the 3D point (IR camera frame) seen at colour pixel uv_vis, or nullopt.
+// Nearest-pixel depth (the paper) unless max_jump_ratio > 0, then SampleDepthBilinear.
 std::optional<Eigen::Vector3d> LiftColorPixel(const Calibration& calib, const cv::Mat& depth_m,
-                                              const Eigen::Vector2d& uv_vis);
+                                              const Eigen::Vector2d& uv_vis,
+                                              double max_jump_ratio = 0);
 
 }  // namespace rgbdvo

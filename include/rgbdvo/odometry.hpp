@@ -10,6 +10,7 @@
 #include "rgbdvo/geometry.hpp"
 #include "rgbdvo/matching.hpp"
 #include "rgbdvo/motion_check.hpp"
+#include "rgbdvo/point_pairs.hpp"
 #include "rgbdvo/ransac.hpp"
 #include "rgbdvo/refine.hpp"
 
@@ -18,6 +19,7 @@ namespace rgbdvo {
 struct OdometryOptions {
   FeatureOptions features;
   MatchOptions matching;
+  LiftOptions lifting;
   RansacOptions ransac;
   MotionCheckOptions verify;
   // Refine the RANSAC motion on reprojection and depth residuals (false = the paper's SVD only).
@@ -27,7 +29,7 @@ struct OdometryOptions {
   // when its inliers fall below this fraction of those of the keyframe's first match (drift
   // then grows per keyframe, not per frame). 0 = every accepted frame is the next reference,
   // as in the paper.
-  double keyframe_inlier_ratio = 0.5;
+  double keyframe_inlier_ratio = 0.7;
   // After this many rejected frames in a row the reference is given up: the current frame
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
