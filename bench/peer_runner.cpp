@@ -41,6 +41,8 @@ int Run(const std::string& name, const PeerArgs& a, const PeerFactory& factory) 
 
   std::cout << "# source: " << source.Describe() << "\n# calibration: " << a.calib
             << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
+            << " (pinhole: the peers take no lens distortion"
+            << (calib.dist_ir == decltype(calib.dist_ir){} ? "" : "; dist_ir ignored") << ")"
             << "\n# method: " << peer->Describe() << std::endl;
 
   const auto start = std::chrono::steady_clock::now();
