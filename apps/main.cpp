@@ -8,6 +8,8 @@ int main(int argc, char** argv) {
   CLI::App app{"rgbdvo: visual odometry for Kinect-style RGB-D cameras (Fiala & Ufkes 2011)"};
   app.require_subcommand(1);
   rgbdvo::cli::AddRunCommand(app);
+  rgbdvo::cli::AddEvalCommand(app);
+  rgbdvo::cli::AddPlotCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
