@@ -54,6 +54,7 @@ struct RpeResult {
   std::string Brief() const;
 };
 
+// Both take trajectories sorted by timestamp, as ReadTrajectory returns them.
 // RPE over a fixed time step: for every estimate pose i, j is the estimate pose nearest in time
 // to t_i + delta (pairs with j the last pose are dropped); Q_i, Q_j are the ground truth poses
 // nearest in time to t_i, t_j (the pair is skipped when either is further than twice the ground
