@@ -137,25 +137,32 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
   }
   subtitle += "   (frame: first camera)";
 
-  // Title, subtitle and one legend for both panels sit above the panels (screen coordinates);
-  // they are drawn with the first panel and unset before the second.
+  // Layout in screen coordinates: title, subtitle and one legend strip on top, two panels below.
+  // Both axes of a panel get the same span in metres and the same length in pixels, so the
+  // scale is equal on both axes.
   const std::string title = options.title.empty() ? std::string("trajectory") : options.title;
+  const double aspect = double(options.height_px) / options.width_px;
+  const double panel_w = std::min(0.41, 0.68 * aspect), panel_h = panel_w / aspect;
+  const double bottom = 0.10, top = bottom + panel_h;
   std::ostringstream gp;
   gp << std::setprecision(9) << "set terminal pngcairo noenhanced size " << options.width_px << ","
      << options.height_px << " font 'DejaVu Sans,13' linewidth 1.6\n"
      << "set output " << Quoted(png_path) << "\n"
-     << "set border lw 1\nset tics out nomirror\nset mxtics 2\nset mytics 2\n"
-     << "set grid xtics ytics mxtics mytics lt 1 lw 0.8 lc rgb '#dcdcdc', lt 1 lw 0.6 lc rgb "
-        "'#f0f0f0'\n"
-     << "set size ratio -1\n"
+     << "set multiplot\n"
      << "set label 1001 " << Quoted(title) << " at screen 0.5, screen 0.965 center font ',16'\n"
      << "set label 1002 " << Quoted(subtitle)
      << " at screen 0.5, screen 0.925 center font ',11' tc rgb '#444444'\n"
-     << "set key at screen 0.5, screen 0.875 center center horizontal box lc rgb '#bbbbbb' "
-        "samplen 3 width 1.5 font ',12'\n"
-     << "set multiplot layout 1,2 margins screen 0.075, 0.985, 0.1, 0.80 spacing screen 0.1\n";
-  for (const Panel& panel : kPanels) {
-    // Both axes get the same span so the equal-aspect panels are square and the same size.
+     << "set border lw 1\nset tics out nomirror\nset mxtics 2\nset mytics 2\nunset key\n"
+     << "set grid xtics ytics mxtics mytics lt 1 lw 0.8 lc rgb '#dcdcdc', lt 1 lw 0.6 lc rgb "
+        "'#f0f0f0'\n"
+     << "set tmargin at screen " << top << "\nset bmargin at screen " << bottom << "\n";
+  // Line and point styles, shared by the panels and the legend.
+  const std::string gt_style = "with lines lw 2.2 dt (6,3) lc rgb '#555555'";
+  const std::string est_style = "with lines lw 2 lc rgb '#1f6fb4'";
+  const std::string start_style = "with points pt 7 ps 1.8 lc rgb '#2ca02c'";
+  const std::string end_style = "with points pt 5 ps 1.6 lc rgb '#d62728'";
+  for (int k = 0; k < 2; ++k) {
+    const Panel& panel = kPanels[k];
     Eigen::Vector2d lo = panel.project(est.front()), hi = lo;
     for (const auto* set : {&est, &gt})
       for (const Eigen::Vector3d& p : *set) {
@@ -164,24 +171,32 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
       }
     const double span = std::max(0.05, (hi - lo).maxCoeff()) * 1.25;
     const Eigen::Vector2d mid = 0.5 * (lo + hi);
-    gp << "set title " << Quoted(panel.title) << " font ',14'\n"
+    const double centre = 0.27 + 0.5 * k;  // a little right of the half: room for the y label
+    gp << "set lmargin at screen " << centre - panel_w / 2 << "\nset rmargin at screen "
+       << centre + panel_w / 2 << "\n"
+       << "set title " << Quoted(panel.title) << " font ',14'\n"
        << "set xlabel " << Quoted(panel.xlabel) << "\nset ylabel " << Quoted(panel.ylabel) << "\n"
        << "set xrange [" << mid.x() - span / 2 << ":" << mid.x() + span / 2 << "]\n"
        << "set yrange [" << mid.y() - span / 2 << ":" << mid.y() + span / 2 << "]\n";
-    const std::string u = panel.columns;
+    const std::string u = std::string(" using ") + panel.columns + " ";
     gp << "plot ";
-    if (!gt.empty())
-      gp << "'" << (tmp.path / "gt.dat").string() << "' using " << u
-         << " with lines lw 2.2 dt (6,3) lc rgb '#555555' title 'ground truth (aligned)', ";
-    gp << "'" << (tmp.path / "est.dat").string() << "' using " << u
-       << " with lines lw 2 lc rgb '#1f6fb4' title 'estimate (rgbdvo)', "
-       << "'" << (tmp.path / "start.dat").string() << "' using " << u
-       << " with points pt 7 ps 1.8 lc rgb '#2ca02c' title 'start', "
-       << "'" << (tmp.path / "end.dat").string() << "' using " << u
-       << " with points pt 5 ps 1.6 lc rgb '#d62728' title 'end'\n"
-       << "unset label 1001\nunset label 1002\nunset key\n";
+    if (!gt.empty()) gp << "'" << (tmp.path / "gt.dat").string() << "'" << u << gt_style << ", ";
+    gp << "'" << (tmp.path / "est.dat").string() << "'" << u << est_style << ", '"
+       << (tmp.path / "start.dat").string() << "'" << u << start_style << ", '"
+       << (tmp.path / "end.dat").string() << "'" << u << end_style << "\n"
+       << "unset label 1001\nunset label 1002\n";
   }
-  gp << "unset multiplot\n";
+  // The legend: an empty full-width plot whose key is the only thing drawn.
+  gp << "unset title\nunset xlabel\nunset ylabel\nunset border\nunset tics\nunset grid\n"
+     << "set lmargin at screen 0.05\nset rmargin at screen 0.95\n"
+     << "set tmargin at screen 0.90\nset bmargin at screen 0.85\n"
+     << "set xrange [0:1]\nset yrange [0:1]\n"
+     << "set key center center horizontal box lc rgb '#bbbbbb' samplen 3 width 2 font ',12'\n"
+     << "plot ";
+  if (!gt.empty()) gp << "NaN " << gt_style << " title 'ground truth (aligned)', ";
+  gp << "NaN " << est_style << " title 'estimate', NaN " << start_style << " title 'start', NaN "
+     << end_style << " title 'end'\n"
+     << "unset multiplot\n";
   {
     std::ofstream out(tmp.path / "plot.gp");
     out << gp.str();

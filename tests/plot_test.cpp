@@ -62,13 +62,13 @@ TEST_CASE("PlotTrajectory without ground truth, or with none matching, draws the
   const std::string dir = MakeTempDir("plot");
   PlotResult r = PlotTrajectory(est, {}, dir + "/a.png", {});
   CHECK_FALSE(r.aligned);
-  CHECK(PngSize(dir + "/a.png").first == 1500);
+  CHECK(PngSize(dir + "/a.png").first == PlotOptions().width_px);
   std::vector<StampedPose> late = est;
   for (StampedPose& p : late) p.timestamp += 100;
   r = PlotTrajectory(est, late, dir + "/b.png", {});
   CHECK_FALSE(r.aligned);
   CHECK_THAT(r.Brief(), Catch::Contains("not drawn"));
-  CHECK(PngSize(dir + "/b.png").first == 1500);
+  CHECK(PngSize(dir + "/b.png").first == PlotOptions().width_px);
 }
 
 TEST_CASE("PlotTrajectory: a missing gnuplot is a clear error") {

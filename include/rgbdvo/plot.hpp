@@ -12,7 +12,7 @@ namespace rgbdvo {
 
 struct PlotOptions {
   std::string title;    // figure title; empty = "trajectory"
-  int width_px = 1500;  // PNG size, pixels
+  int width_px = 1300;  // PNG size, pixels
   int height_px = 720;
   double max_dt_s = 0.02;           // time matching for aligning the ground truth, s
   std::string gnuplot = "gnuplot";  // the gnuplot executable (name on PATH or a path)
