@@ -207,6 +207,8 @@ EvaluationReport EvaluateFiles(const std::string& gt_path, const std::string& es
   report.estimate_path = est_path;
   report.groundtruth_poses = static_cast<int>(gt.poses.size());
   report.estimate_poses = static_cast<int>(est.poses.size());
+  report.groundtruth_repeated = gt.repeated_timestamps;
+  report.estimate_repeated = est.repeated_timestamps;
   report.options = options;
   report.ate = ComputeAte(gt.poses, est.poses, options);
   if (report.ate.matched == 0) {
@@ -228,7 +230,12 @@ std::string EvaluationReport::Table() const {
     << "estimate:     " << estimate_path << " (" << estimate_poses << " poses)\n"
     << "ATE: " << ate.matched << " poses matched within " << options.max_dt_s
     << " s, rigid alignment without scale\n"
-    << "RPE: " << rpe.pairs << " pairs " << options.delta_s << " s apart\n\n";
+    << "RPE: " << rpe.pairs << " pairs " << options.delta_s << " s apart\n";
+  if (groundtruth_repeated + estimate_repeated > 0)
+    s << "note: rows with a repeated timestamp (the last one kept, as the TUM tools do): "
+      << estimate_repeated << " in the estimate, " << groundtruth_repeated
+      << " in the ground truth\n";
+  s << "\n";
   s << std::left << std::setw(22) << "" << std::right << std::setw(10) << "rmse" << std::setw(10)
     << "mean" << std::setw(10) << "median" << std::setw(10) << "max"
     << "\n";
@@ -255,7 +262,9 @@ std::string EvaluationReport::Json() const {
   s << std::setprecision(9) << "{\"groundtruth\": " << JsonString(groundtruth_path)
     << ", \"estimate\": " << JsonString(estimate_path)
     << ", \"groundtruth_poses\": " << groundtruth_poses
-    << ", \"estimate_poses\": " << estimate_poses << ", \"max_dt_s\": " << options.max_dt_s
+    << ", \"estimate_poses\": " << estimate_poses
+    << ", \"groundtruth_repeated\": " << groundtruth_repeated
+    << ", \"estimate_repeated\": " << estimate_repeated << ", \"max_dt_s\": " << options.max_dt_s
     << ", \"delta_s\": " << options.delta_s
     << ",\n \"ate\": {\"success\": " << (ate.success ? "true" : "false")
     << ", \"matched\": " << ate.matched << ", \"reason\": " << JsonString(ate.reason)

@@ -51,7 +51,6 @@ Trajectory ReadTrajectory(const std::string& path) {
   traj.path = path;
   static const char* kNames[] = {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
   std::map<std::string, int> column;  // CSV: column of each field
-  std::map<double, int> line_of_stamp;
   bool first = true;
   int line_no = 0;
   for (std::string raw; std::getline(in, raw);) {
@@ -85,18 +84,23 @@ Trajectory ReadTrajectory(const std::string& path) {
     }
     const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (q.norm() < 1e-6) throw std::runtime_error(where + ": quaternion has zero norm");
-    if (auto [it, added] = line_of_stamp.emplace(v[0], line_no); !added) {
-      std::ostringstream msg;
-      msg << where << ": timestamp " << std::fixed << std::setprecision(6) << v[0]
-          << " repeats line " << it->second;
-      throw std::runtime_error(msg.str());
-    }
     traj.poses.push_back({v[0], MakeRigid(q, {v[1], v[2], v[3]})});
   }
   if (traj.poses.empty())
     throw std::runtime_error(path + ": no poses (empty file or only comments/header)");
-  std::sort(traj.poses.begin(), traj.poses.end(),
-            [](const StampedPose& a, const StampedPose& b) { return a.timestamp < b.timestamp; });
+  // Sort by time keeping file order among equal times, then keep the last of each time.
+  std::stable_sort(
+      traj.poses.begin(), traj.poses.end(),
+      [](const StampedPose& a, const StampedPose& b) { return a.timestamp < b.timestamp; });
+  std::vector<StampedPose> unique;
+  for (size_t k = 0; k < traj.poses.size(); ++k) {
+    if (k + 1 < traj.poses.size() && traj.poses[k + 1].timestamp == traj.poses[k].timestamp) {
+      ++traj.repeated_timestamps;
+      continue;
+    }
+    unique.push_back(traj.poses[k]);
+  }
+  traj.poses = std::move(unique);
   return traj;
 }
 

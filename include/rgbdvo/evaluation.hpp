@@ -65,6 +65,7 @@ RpeResult ComputeRpe(const std::vector<StampedPose>& groundtruth,
 struct EvaluationReport {
   std::string groundtruth_path, estimate_path;
   int groundtruth_poses = 0, estimate_poses = 0;
+  int groundtruth_repeated = 0, estimate_repeated = 0;  // rows with a repeated timestamp, dropped
   EvaluationOptions options;
   AteResult ate;
   RpeResult rpe;

@@ -21,12 +21,15 @@ struct Trajectory {
   std::string path;
   TrajectoryFormat format = TrajectoryFormat::kTum;
   std::vector<StampedPose> poses;  // sorted by timestamp, timestamps unique
+  int repeated_timestamps = 0;     // rows dropped because a later row had the same timestamp
 };
 
 // Reads a TUM or rgbdvo CSV trajectory (a CSV is recognised by a first line that names the
 // columns and contains `timestamp`, `tx` and `qw`). Throws std::runtime_error naming
-// `path:line` for a bad row (too few fields, not a number, a zero quaternion, a repeated
-// timestamp), and naming the file for a missing or empty file. Rows need not be sorted.
+// `path:line` for a bad row (too few fields, not a number, a zero quaternion), and naming the
+// file for a missing or empty file. Rows need not be sorted. Of rows with the same timestamp
+// the last one is kept, as in the TUM tools (rgbdvo stamps a pose with its depth image's time,
+// which two colour frames can share).
 Trajectory ReadTrajectory(const std::string& path);
 
 // Writes `timestamp tx ty tz qx qy qz qw` lines; throws naming the file.
