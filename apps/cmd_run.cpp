@@ -4,18 +4,27 @@
 #include <unistd.h>
 
 #include "commands.hpp"
+#include <filesystem>
+
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/open_source.hpp"
+#include "rgbdvo/plot.hpp"
 #include "rgbdvo/run.hpp"
 
 namespace rgbdvo::cli {
 namespace {
 
 struct RunArgs {
-  std::string folder, calib, csv, tum;
+  std::string folder, calib, csv, tum, plot;
   bool quiet = false;
   SourceOptions source;
   std::unique_ptr<OdometryFlags> odometry_flags;
+};
+
+// Keeps the poses in memory for --plot.
+struct PoseRecorder : TrajectoryWriter {
+  std::vector<StampedPose> poses;
+  void Write(const FrameResult& r) override { poses.push_back({r.timestamp, r.world_from_cam}); }
 };
 
 int Run(const RunArgs& a) {
@@ -32,6 +41,8 @@ int Run(const RunArgs& a) {
   if (!a.tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(a.tum));
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
+  PoseRecorder recorder;
+  if (!a.plot.empty()) writer_ptrs.push_back(&recorder);
 
   if (!a.quiet) {
     std::cout << "# source: " << source->Describe() << "\n# calibration: " << a.calib
@@ -49,6 +60,14 @@ int Run(const RunArgs& a) {
   });
   if (progress) std::cerr << "\n";
   std::cout << summary.Brief() << std::endl;
+  if (!a.plot.empty()) {  // with the folder's groundtruth.txt when it has one
+    const std::string gt_path = (std::filesystem::path(a.folder) / "groundtruth.txt").string();
+    std::vector<StampedPose> gt;
+    if (std::filesystem::exists(gt_path)) gt = ReadTrajectory(gt_path).poses;
+    PlotOptions plot;
+    plot.title = "rgbdvo run " + a.folder;
+    std::cout << PlotTrajectory(recorder.poses, gt, a.plot, plot).Brief() << std::endl;
+  }
   return 0;
 }
 
@@ -65,6 +84,7 @@ void AddRunCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")
       ->capture_default_str();
+  cmd->add_option("--plot", args->plot, "PNG of the path after the run (with ground truth if any)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {

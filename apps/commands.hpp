@@ -10,5 +10,7 @@ namespace rgbdvo::cli {
 
 void AddRunCommand(CLI::App& app);
 void AddCalibrateCommand(CLI::App& app);
+void AddEvalCommand(CLI::App& app);
+void AddPlotCommand(CLI::App& app);
 
 }  // namespace rgbdvo::cli

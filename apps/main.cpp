@@ -9,6 +9,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   rgbdvo::cli::AddRunCommand(app);
   rgbdvo::cli::AddCalibrateCommand(app);
+  rgbdvo::cli::AddEvalCommand(app);
+  rgbdvo::cli::AddPlotCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libopencv-dev libeigen3-dev libfreenect-dev
-          libfreenect-bin libcli11-dev catch2 xvfb xdotool)
+          libfreenect-bin libcli11-dev catch2 xvfb xdotool gnuplot-nox python3-numpy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
