@@ -46,6 +46,8 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
            "matches per RANSAC hypothesis (paper: 4)");
   Add<double>("--inlier-dist", [](O& o) -> double& { return o.ransac.inlier_distance_m; },
               "RANSAC inlier 3D distance, m (paper: 0.015)");
+  Add<double>("--ransac-confidence", [](O& o) -> double& { return o.ransac.confidence; },
+              "stop RANSAC early at this confidence (0 = always --trials, the paper)");
   Add<int>("--min-inliers", [](O& o) -> int& { return o.verify.min_inliers; },
            "reject a frame with fewer inliers (paper: 15)");
   Add<double>("--max-translation", [](O& o) -> double& { return o.verify.max_translation_m; },

@@ -34,6 +34,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.matching.mutual = false;      // the paper names no matching rule; a plain ratio test
     o.refine_enabled = false;       // SVD on the inliers only (eq. 5-10)
     o.keyframe_inlier_ratio = 0;    // successive frames
+    o.ransac.confidence = 0;        // always 200 trials
     o.undistort = false;            // "a perfect pinhole model was used"
     o.lifting.max_depth_jump_ratio = 0;  // depth at the nearest pixel
     return o;
@@ -54,6 +55,7 @@ std::string OdometryOptions::ToString() const {
     << "ransac.max_trials = " << ransac.max_trials << "\n"
     << "ransac.sample_size = " << ransac.sample_size << "\n"
     << "ransac.inlier_distance_m = " << ransac.inlier_distance_m << "\n"
+    << "ransac.confidence = " << ransac.confidence << "\n"
     << "verify.min_inliers = " << verify.min_inliers << "\n"
     << "verify.max_translation_m = " << verify.max_translation_m << "\n"
     << "verify.max_rotation_deg = " << verify.max_rotation_deg << "\n"

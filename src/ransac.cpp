@@ -33,6 +33,8 @@ void RansacOptions::Check() const {
   if (max_trials < 1) throw std::invalid_argument("ransac max_trials must be >= 1");
   if (sample_size < 3) throw std::invalid_argument("ransac sample_size must be >= 3");
   if (!(inlier_distance_m > 0)) throw std::invalid_argument("ransac inlier_distance_m must be > 0");
+  if (!(confidence >= 0 && confidence < 1))
+    throw std::invalid_argument("ransac confidence must be in [0, 1)");
 }
 
 std::string RansacResult::Brief() const {
@@ -53,7 +55,8 @@ RansacResult EstimateRigidRansac(const RansacOptions& o, const std::vector<Point
   }
   std::vector<int> sample(o.sample_size);
   std::vector<int> best;
-  for (int trial = 0; trial < o.max_trials; ++trial) {
+  int needed = o.max_trials;
+  for (int trial = 0; trial < needed; ++trial) {
     ++result.trials;
     // Distinct random indices (partial Fisher-Yates on a small set by rejection).
     for (int i = 0; i < o.sample_size; ++i) {
@@ -66,7 +69,19 @@ RansacResult EstimateRigidRansac(const RansacOptions& o, const std::vector<Point
     const std::optional<Rigid3d> hypothesis = AlignRigid(pairs, sample);
     if (!hypothesis) continue;
     std::vector<int> inliers = Inliers(pairs, *hypothesis, o.inlier_distance_m);
-    if (inliers.size() > best.size()) best = std::move(inliers);
+    if (inliers.size() > best.size()) {
+      best = std::move(inliers);
+      if (o.confidence > 0) {
+        // Trials for P(some sample all inliers) >= confidence: log(1-p) / log(1-w^s).
+        const double all_in = std::pow(static_cast<double>(best.size()) / n, o.sample_size);
+        if (all_in >= 1.0) {
+          needed = trial + 1;
+        } else if (all_in > 0) {
+          const double k = std::ceil(std::log(1 - o.confidence) / std::log(1 - all_in));
+          needed = static_cast<int>(std::min<double>(o.max_trials, k));
+        }
+      }
+    }
   }
   if (best.size() < 3) {
     result.reason = "no_hypothesis";

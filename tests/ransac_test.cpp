@@ -52,3 +52,23 @@ TEST_CASE("RansacOptions::Check rejects bad values") {
   o.sample_size = 2;
   CHECK_THROWS_WITH(o.Check(), Catch::Contains("sample_size"));
 }
+
+TEST_CASE("Adaptive RANSAC stops early on clean data and keeps the paper's 200 trials at 0") {
+  std::mt19937 rng(15);
+  const Rigid3d truth = RandomRigid(rng, 0.1, 0.1);
+  const auto pairs = SynthesizePairs(rng, truth, 200, 0.002, 0.1);
+  Rng a(1), b(1);
+  RansacOptions adaptive;  // confidence 0.999: with 90% inliers about 7 trials
+  const RansacResult fast = EstimateRigidRansac(adaptive, pairs, a);
+  REQUIRE(fast.success);
+  CHECK(fast.trials < 20);
+  CHECK(RigidNear(fast.prev_from_cur, truth, 0.2, 0.002));
+  RansacOptions paper;
+  paper.confidence = 0;
+  const RansacResult full = EstimateRigidRansac(paper, pairs, b);
+  CHECK(full.trials == 200);
+  // 60% outliers: more trials are needed (w^4 = 0.0256 -> ~267, capped at 200).
+  const auto hard = SynthesizePairs(rng, truth, 200, 0.002, 0.6);
+  Rng c(2);
+  CHECK(EstimateRigidRansac(adaptive, hard, c).trials > 100);
+}

@@ -17,6 +17,10 @@ struct RansacOptions {
   int max_trials = 200;              // hypotheses tried (paper: 200)
   int sample_size = 4;               // matches per hypothesis (paper: 4)
   double inlier_distance_m = 0.015;  // 3D distance for an inlier (paper: 1.5 cm)
+  // Stop once an all-inlier sample has been drawn with this probability, given the best inlier
+  // ratio so far (Fischler & Bolles 1981; Hartley & Zisserman 4.7.1); max_trials stays the cap.
+  // 0 = always run max_trials (the paper).
+  double confidence = 0.999;
   void Check() const;
 };
 
