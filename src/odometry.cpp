@@ -46,6 +46,8 @@ std::string OdometryOptions::ToString() const {
     << "features.contrast_threshold = " << features.contrast_threshold << "\n"
     << "features.edge_threshold = " << features.edge_threshold << "\n"
     << "features.sigma = " << features.sigma << "\n"
+    << "features.upsample_first_octave = " << (features.upsample_first_octave ? "true" : "false")
+    << "\n"
     << "matching.ratio = " << matching.ratio << "\n"
     << "matching.mutual = " << (matching.mutual ? "true" : "false") << "\n"
     << "ransac.max_trials = " << ransac.max_trials << "\n"
