@@ -3,6 +3,8 @@
 #include <memory>
 #include <unistd.h>
 
+#include <opencv2/core/utility.hpp>
+
 #include "commands.hpp"
 #include <filesystem>
 
@@ -16,7 +18,8 @@ namespace {
 
 struct RunArgs {
   std::string folder, calib, csv, tum, plot;
-  bool quiet = false;
+  bool quiet = false, timing = false;
+  RunOptions run;
   SourceOptions source;
   std::unique_ptr<OdometryFlags> odometry_flags;
 };
@@ -53,13 +56,16 @@ int Run(const RunArgs& a) {
     for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
     std::cout << std::flush;
   }
+  // One thread means one core: OpenCV's own parallel loops too.
+  if (a.run.EffectiveThreads() == 1) cv::setNumThreads(1);
   Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
   const RunSummary summary = RunOdometry(*source, odometry, writer_ptrs, [&](const FrameResult& r) {
     if (progress) std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
-  });
+  }, a.run);
   if (progress) std::cerr << "\n";
   std::cout << summary.Brief() << std::endl;
+  if (a.timing) std::cout << summary.Timing() << std::endl;
   if (!a.plot.empty()) {  // with the folder's groundtruth.txt when it has one
     const std::string gt_path = (std::filesystem::path(a.folder) / "groundtruth.txt").string();
     std::vector<StampedPose> gt;
@@ -86,6 +92,12 @@ void AddRunCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--plot", args->plot, "PNG of the path after the run (with ground truth if any)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
+  cmd->add_option("--threads", args->run.threads,
+                  "1 = one core; 2 = decode+features of the next frame on a second thread "
+                  "(same results); 0 = hardware concurrency capped at 2")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--timing", args->timing, "also print milliseconds per frame for each stage");
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Run(*args);

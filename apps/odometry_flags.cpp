@@ -33,6 +33,10 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
            "SIFT: keep the N strongest, 0 = all");
   Add<double>("--contrast-threshold", [](O& o) -> double& { return o.features.contrast_threshold; },
               "SIFT DoG contrast threshold");
+  Add<int>("--octave-layers", [](O& o) -> int& { return o.features.octave_layers; },
+           "SIFT scales per octave");
+  Add<bool>("--sift-upsample", [](O& o) -> bool& { return o.features.upsample_first_octave; },
+            "SIFT: 2x-upsampled first octave (OpenCV) or, false, SIFT on the half image");
   Add<double>("--ratio", [](O& o) -> double& { return o.matching.ratio; },
               "Lowe ratio test: best < ratio * second best");
   AddSwitch("--no-mutual", [](O& o) -> bool& { return o.matching.mutual; }, false,

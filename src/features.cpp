@@ -15,7 +15,8 @@ void FeatureOptions::Check() const {
 
 SiftExtractor::SiftExtractor(const FeatureOptions& o)
     : sift_(cv::SIFT::create(o.max_features, o.octave_layers, o.contrast_threshold,
-                             o.edge_threshold, o.sigma)) {
+                             o.edge_threshold, o.sigma)),
+      upsample_(o.upsample_first_octave) {
   o.Check();
 }
 
@@ -26,7 +27,18 @@ Features SiftExtractor::Extract(const cv::Mat& image) const {
   else
     gray = image;
   Features f;
-  sift_->detectAndCompute(gray, cv::noArray(), f.keypoints, f.descriptors);
+  if (upsample_) {
+    sift_->detectAndCompute(gray, cv::noArray(), f.keypoints, f.descriptors);
+    return f;
+  }
+  cv::Mat half;
+  cv::resize(gray, half, cv::Size((gray.cols + 1) / 2, (gray.rows + 1) / 2), 0, 0, cv::INTER_AREA);
+  sift_->detectAndCompute(half, cv::noArray(), f.keypoints, f.descriptors);
+  // Pixel centres: half-image pixel u covers image pixels 2u and 2u+1, centre 2u + 0.5.
+  for (cv::KeyPoint& k : f.keypoints) {
+    k.pt = cv::Point2f(2 * k.pt.x + 0.5f, 2 * k.pt.y + 0.5f);
+    k.size *= 2;
+  }
   return f;
 }
 

@@ -16,19 +16,31 @@ std::vector<cv::DMatch> MatchFeatures(const MatchOptions& o, const Features& pre
   cv::BFMatcher matcher(cv::NORM_L2);
   std::vector<std::vector<cv::DMatch>> forward;  // prev -> cur, two nearest
   matcher.knnMatch(prev.descriptors, cur.descriptors, forward, 2);
-  std::vector<int> best_prev_for_cur;
-  if (o.mutual) {
-    std::vector<cv::DMatch> backward;  // cur -> prev, nearest
-    matcher.match(cur.descriptors, prev.descriptors, backward);
-    best_prev_for_cur.assign(cur.size(), -1);
-    for (const cv::DMatch& m : backward) best_prev_for_cur[m.queryIdx] = m.trainIdx;
-  }
+  // Ratio test first; the mutual check then needs the backward nearest neighbour only for the
+  // cur features that survived it (same distances as a full backward pass, so same result).
+  std::vector<cv::DMatch> candidates;
   for (const std::vector<cv::DMatch>& knn : forward) {
     if (knn.size() < 2) continue;
     if (!(knn[0].distance < o.ratio * knn[1].distance)) continue;
-    if (o.mutual && best_prev_for_cur[knn[0].trainIdx] != knn[0].queryIdx) continue;
-    out.push_back(knn[0]);
+    candidates.push_back(knn[0]);
   }
+  if (!o.mutual) return candidates;
+  std::vector<int> row_of_cur(cur.size(), -1), cur_of_row;
+  for (const cv::DMatch& m : candidates)
+    if (row_of_cur[m.trainIdx] < 0) {
+      row_of_cur[m.trainIdx] = static_cast<int>(cur_of_row.size());
+      cur_of_row.push_back(m.trainIdx);
+    }
+  cv::Mat queries(static_cast<int>(cur_of_row.size()), cur.descriptors.cols,
+                  cur.descriptors.type());
+  for (size_t r = 0; r < cur_of_row.size(); ++r)
+    cur.descriptors.row(cur_of_row[r]).copyTo(queries.row(static_cast<int>(r)));
+  std::vector<cv::DMatch> backward;  // candidate cur -> prev, nearest
+  if (!cur_of_row.empty()) matcher.match(queries, prev.descriptors, backward);
+  std::vector<int> best_prev_for_row(cur_of_row.size(), -1);
+  for (const cv::DMatch& m : backward) best_prev_for_row[m.queryIdx] = m.trainIdx;
+  for (const cv::DMatch& m : candidates)
+    if (best_prev_for_row[row_of_cur[m.trainIdx]] == m.queryIdx) out.push_back(m);
   return out;
 }
 

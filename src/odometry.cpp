@@ -49,6 +49,8 @@ std::string OdometryOptions::ToString() const {
     << "features.contrast_threshold = " << features.contrast_threshold << "\n"
     << "features.edge_threshold = " << features.edge_threshold << "\n"
     << "features.sigma = " << features.sigma << "\n"
+    << "features.upsample_first_octave = " << (features.upsample_first_octave ? "true" : "false")
+    << "\n"
     << "matching.ratio = " << matching.ratio << "\n"
     << "matching.mutual = " << (matching.mutual ? "true" : "false") << "\n"
     << "lifting.max_depth_jump_ratio = " << lifting.max_depth_jump_ratio << "\n"

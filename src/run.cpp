@@ -1,7 +1,15 @@
 #include "rgbdvo/run.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <thread>
 
 namespace rgbdvo {
 namespace {
@@ -11,7 +19,102 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// A frame with its features, or the end of the source, or the source's exception.
+struct Decoded {
+  std::optional<Frame> frame;
+  Features features;
+  double decode_seconds = 0, feature_seconds = 0;
+  std::exception_ptr error;
+};
+
+// Reads the next frame and extracts its features; never throws (the error travels in the item).
+Decoded DecodeNext(FrameSource& source, const SiftExtractor& extractor) {
+  Decoded d;
+  try {
+    Clock::time_point t0 = Clock::now();
+    d.frame = source.Next();
+    d.decode_seconds = Since(t0);
+    if (d.frame) {
+      t0 = Clock::now();
+      d.features = extractor.Extract(d.frame->bgr);
+      d.feature_seconds = Since(t0);
+    }
+  } catch (...) {
+    d.error = std::current_exception();
+  }
+  return d;
+}
+
+// Single-producer single-consumer queue holding at most `capacity` items.
+class BoundedQueue {
+ public:
+  explicit BoundedQueue(size_t capacity) : capacity_(capacity) {}
+  // False when cancelled (the item is dropped).
+  bool Push(Decoded d) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    not_full_.wait(lock, [&] { return cancelled_ || items_.size() < capacity_; });
+    if (cancelled_) return false;
+    items_.push_back(std::move(d));
+    not_empty_.notify_one();
+    return true;
+  }
+  Decoded Pop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    not_empty_.wait(lock, [&] { return !items_.empty(); });
+    Decoded d = std::move(items_.front());
+    items_.pop_front();
+    not_full_.notify_one();
+    return d;
+  }
+  void Cancel() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cancelled_ = true;
+    not_full_.notify_all();
+  }
+
+ private:
+  const size_t capacity_;
+  std::mutex mutex_;
+  std::condition_variable not_full_, not_empty_;
+  std::deque<Decoded> items_;
+  bool cancelled_ = false;
+};
+
+// Decodes and extracts on its own thread into a bounded queue; stops and joins when destroyed
+// (also when the consumer throws).
+class Prefetcher {
+ public:
+  Prefetcher(FrameSource& source, const SiftExtractor& extractor, int capacity)
+      : queue_(static_cast<size_t>(capacity)), thread_([this, &source, &extractor] {
+          for (;;) {
+            Decoded d = DecodeNext(source, extractor);
+            const bool last = !d.frame || d.error;
+            if (!queue_.Push(std::move(d)) || last) return;
+          }
+        }) {}
+  ~Prefetcher() {
+    queue_.Cancel();
+    thread_.join();
+  }
+  Decoded Next() { return queue_.Pop(); }
+
+ private:
+  BoundedQueue queue_;
+  std::thread thread_;
+};
+
 }  // namespace
+
+void RunOptions::Check() const {
+  if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0 = automatic)");
+  if (queue_frames < 1) throw std::invalid_argument("queue_frames must be >= 1");
+}
+
+int RunOptions::EffectiveThreads() const {
+  if (threads > 0) return std::min(threads, 2);
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw >= 2 ? 2 : 1;
+}
 
 std::string RunSummary::Brief() const {
   std::ostringstream s;
@@ -22,19 +125,37 @@ std::string RunSummary::Brief() const {
   return s.str();
 }
 
+std::string RunSummary::Timing() const {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(2);
+  const double ms = frames > 0 ? 1000.0 / frames : 0.0;
+  s << "ms/frame: decode " << decode_seconds * ms << ", features " << stage_seconds.features * ms
+    << ", matching " << stage_seconds.matching * ms << ", lifting " << stage_seconds.lifting * ms
+    << ", ransac+refine " << stage_seconds.ransac * ms << ", writing " << write_seconds * ms
+    << ", wall " << seconds * ms << " (" << threads << " thread" << (threads > 1 ? "s" : "") << ")";
+  return s.str();
+}
+
 RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
                        const std::vector<TrajectoryWriter*>& writers,
-                       const std::function<void(const FrameResult&)>& on_frame) {
+                       const std::function<void(const FrameResult&)>& on_frame,
+                       const RunOptions& options) {
+  options.Check();
   RunSummary summary;
+  summary.threads = options.EffectiveThreads();
   const Clock::time_point start = Clock::now();
   double inlier_sum = 0;
+  std::optional<Prefetcher> prefetcher;
+  if (summary.threads > 1) prefetcher.emplace(source, odometry.extractor(), options.queue_frames);
   for (;;) {
-    Clock::time_point t0 = Clock::now();
-    std::optional<Frame> frame = source.Next();
-    summary.decode_seconds += Since(t0);
-    if (!frame) break;
-    const FrameResult result = odometry.Process(*frame);
-    t0 = Clock::now();
+    Decoded d = prefetcher ? prefetcher->Next() : DecodeNext(source, odometry.extractor());
+    if (d.error) std::rethrow_exception(d.error);
+    summary.decode_seconds += d.decode_seconds;
+    if (!d.frame) break;
+    FrameResult result = odometry.Process(*d.frame, std::move(d.features));
+    result.times.features = d.feature_seconds;
+    const Clock::time_point t0 = Clock::now();
     for (TrajectoryWriter* w : writers) w->Write(result);
     summary.write_seconds += Since(t0);
 
