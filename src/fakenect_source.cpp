@@ -1,0 +1,89 @@
+#include "rgbdvo/fakenect_source.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "rgbdvo/fakenect_files.hpp"
+#include "rgbdvo/kinect_depth.hpp"
+#include "rgbdvo/stream_pairer.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rgbdvo {
+
+void FakenectSourceOptions::Check() const {
+  if (!(max_time_diff_s > 0)) throw std::invalid_argument("max_time_diff_s must be > 0");
+}
+
+bool IsFakenectFolder(const std::string& folder) {
+  return fs::is_regular_file(fs::path(folder) / "INDEX.txt");
+}
+
+FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOptions& options)
+    : folder_(folder), options_(options) {
+  options_.Check();
+  if (!fs::is_directory(folder)) throw std::runtime_error(folder + ": no such folder");
+  const std::string index = (fs::path(folder) / "INDEX.txt").string();
+  const std::vector<std::string> names = ReadFakenectIndex(index);
+  StreamPairer<Entry> pairer(std::llround(options_.max_time_diff_s * 1e6));
+  std::string first_missing;
+  int missing = 0;
+  auto add = [this](std::vector<StampedPair<Entry>> done) {
+    for (auto& p : done) pairs_.emplace_back(std::move(p.color.value), std::move(p.depth.value));
+  };
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::optional<FakenectName> name = ParseFakenectName(names[i]);
+    if (!name)
+      throw std::runtime_error(index + ": entry " + std::to_string(i + 1) + " '" + names[i] +
+                               "' is not <r|d|a>-<seconds>-<timestamp>.<ext>");
+    if (!fs::is_regular_file(fs::path(folder) / names[i]) && missing++ == 0)
+      first_missing = names[i];
+    const Stamped<Entry> e{name->wallclock_us, {names[i], name->seconds()}};
+    if (name->type == 'r') {
+      ++color_frames_;
+      add(pairer.AddColor(e));
+    } else if (name->type == 'd') {
+      ++depth_frames_;
+      add(pairer.AddDepth(e));
+    } else {
+      ++accel_entries_;
+    }
+  }
+  add(pairer.Finish());
+  unpaired_ = pairer.unpaired();
+  if (missing > 0)
+    throw std::runtime_error((fs::path(folder) / first_missing).string() +
+                             ": listed in INDEX.txt but missing (" + std::to_string(missing) +
+                             " missing files in all)");
+  if (pairs_.empty())
+    throw std::runtime_error(folder + ": empty sequence (" + std::to_string(color_frames_) +
+                             " colour and " + std::to_string(depth_frames_) +
+                             " depth frames in INDEX.txt, no pair within " +
+                             std::to_string(options_.max_time_diff_s) + " s)");
+}
+
+std::optional<Frame> FakenectSource::Next() {
+  if (next_ >= pairs_.size()) return std::nullopt;
+  const auto& [color, depth] = pairs_[next_];
+  Frame f;
+  f.index = static_cast<int>(next_);
+  f.timestamp = color.seconds;
+  f.name = color.file;
+  f.bgr = ReadFakenectColor((fs::path(folder_) / color.file).string());
+  f.depth_m = DepthFromKinectRaw(ReadFakenectDepth((fs::path(folder_) / depth.file).string()));
+  ++next_;
+  return f;
+}
+
+std::string FakenectSource::Describe() const {
+  std::ostringstream s;
+  s << "fakenect recording " << folder_ << ": " << pairs_.size() << " colour-depth pairs within "
+    << options_.max_time_diff_s << " s (" << color_frames_ << " colour, " << depth_frames_
+    << " depth, " << accel_entries_ << " accelerometer entries, " << unpaired_
+    << " colour frames without depth), Kinect raw 11-bit depth";
+  return s.str();
+}
+
+}  // namespace rgbdvo
