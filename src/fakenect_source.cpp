@@ -33,6 +33,7 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
   auto add = [this](std::vector<StampedPair<Entry>> done) {
     for (auto& p : done) pairs_.emplace_back(std::move(p.color.value), std::move(p.depth.value));
   };
+  std::vector<FakenectName> parsed;
   for (size_t i = 0; i < names.size(); ++i) {
     const std::optional<FakenectName> name = ParseFakenectName(names[i]);
     if (!name)
@@ -40,11 +41,21 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
                                "' is not <r|d|a>-<seconds>-<timestamp>.<ext>");
     if (!fs::is_regular_file(fs::path(folder) / names[i]) && missing++ == 0)
       first_missing = names[i];
-    const Stamped<Entry> e{name->wallclock_us, {names[i], name->seconds()}};
-    if (name->type == 'r') {
+    parsed.push_back(*name);
+  }
+  // Pair by the device's clock; recordings without device timestamps (all equal) by the host's.
+  by_device_clock_ = false;
+  for (const FakenectName& n : parsed)
+    if (n.device_ts != parsed.front().device_ts) by_device_clock_ = true;
+  KinectClock clock;
+  for (size_t i = 0; i < parsed.size(); ++i) {
+    const FakenectName& name = parsed[i];
+    const int64_t t = by_device_clock_ ? clock.Micros(name.device_ts) : name.wallclock_us;
+    const Stamped<Entry> e{t, {names[i], name.seconds()}};
+    if (name.type == 'r') {
       ++color_frames_;
       add(pairer.AddColor(e));
-    } else if (name->type == 'd') {
+    } else if (name.type == 'd') {
       ++depth_frames_;
       add(pairer.AddDepth(e));
     } else {
@@ -80,8 +91,9 @@ std::optional<Frame> FakenectSource::Next() {
 std::string FakenectSource::Describe() const {
   std::ostringstream s;
   s << "fakenect recording " << folder_ << ": " << pairs_.size() << " colour-depth pairs within "
-    << options_.max_time_diff_s << " s (" << color_frames_ << " colour, " << depth_frames_
-    << " depth, " << accel_entries_ << " accelerometer entries, " << unpaired_
+    << options_.max_time_diff_s << " s of the " << (by_device_clock_ ? "device's" : "host's")
+    << " clock (" << color_frames_ << " colour, " << depth_frames_ << " depth, " << accel_entries_
+    << " accelerometer entries, " << unpaired_
     << " colour frames without depth), Kinect raw 11-bit depth";
   return s.str();
 }

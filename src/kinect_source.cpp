@@ -52,7 +52,8 @@ std::string CaptureStats::Brief() const {
 KinectSource::KinectSource(const KinectSourceOptions& options)
     : options_(options),
       pairer_(std::llround(options.max_time_diff_s * 1e6)),
-      queue_(static_cast<size_t>(std::max(1, options.queue_capacity))) {
+      queue_(static_cast<size_t>(std::max(1, options.queue_capacity))),
+      record_queue_(8) {
   options_.Check();
   if (!options_.record_folder.empty())
     recorder_ = std::make_unique<FakenectRecorder>(options_.record_folder);
@@ -104,6 +105,7 @@ KinectSource::KinectSource(const KinectSourceOptions& options)
   freenect_set_depth_callback(dev_, &KinectSource::OnDepth);
   if (freenect_start_depth(dev_) < 0 || freenect_start_video(dev_) < 0)
     fail("Kinect " + std::to_string(options_.device) + ": cannot start streaming");
+  if (recorder_) record_thread_ = std::thread(&KinectSource::RecordLoop, this);
   thread_ = std::thread(&KinectSource::Loop, this);
 }
 
@@ -126,15 +128,16 @@ void KinectSource::HandleFrame(bool is_depth, const void* data, uint32_t timesta
   const int64_t t = WallClockMicros();
   last_frame_us_ = t;
   try {
-    Stamped<cv::Mat> frame{t, {}};
+    Stamped<LiveFrame> frame{clock_.Micros(timestamp), {t, {}}};
+    cv::Mat& image = frame.value.data;
     if (is_depth) {
-      frame.value = cv::Mat(height_, width_, CV_16UC1, const_cast<void*>(data)).clone();
+      image = cv::Mat(height_, width_, CV_16UC1, const_cast<void*>(data)).clone();
       depth_this_call_ = true;
       last_depth_ts_ = timestamp;
     } else {
-      frame.value = cv::Mat(height_, width_, CV_8UC3, const_cast<void*>(data)).clone();
+      image = cv::Mat(height_, width_, CV_8UC3, const_cast<void*>(data)).clone();
     }
-    std::vector<StampedPair<cv::Mat>> pairs =
+    std::vector<StampedPair<LiveFrame>> pairs =
         is_depth ? pairer_.AddDepth(frame) : pairer_.AddColor(frame);
     int pairs_before;
     {
@@ -149,25 +152,48 @@ void KinectSource::HandleFrame(bool is_depth, const void* data, uint32_t timesta
       pairs.resize(options_.max_frames - pairs_before);
     const bool limit = options_.max_frames > 0 &&
                        pairs_before + static_cast<int>(pairs.size()) >= options_.max_frames;
-    if (recorder_ && !(limit && !is_depth)) {
-      if (is_depth)
-        recorder_->AddDepth(t, timestamp, frame.value.ptr<uint16_t>(), width_, height_);
-      else
-        recorder_->AddColor(t, timestamp, frame.value.ptr<uint8_t>(), width_, height_);
-    }
+    if (recorder_ && !(limit && !is_depth)) Record({is_depth ? 'd' : 'r', t, timestamp, image});
     Deliver(std::move(pairs));
     last_frame_us_ = WallClockMicros();  // waiting for the consumer is not a stalled device
     if (limit) End(CaptureEnd::kFrameLimit, std::to_string(options_.max_frames) + " frames");
   } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!error_) error_ = std::current_exception();
-    quit_ = true;
+    SetError(std::current_exception());
   }
 }
 
-void KinectSource::Deliver(std::vector<StampedPair<cv::Mat>> pairs) {
-  for (StampedPair<cv::Mat>& p : pairs) {
-    RawPair item{p.color.t_us, std::move(p.color.value), std::move(p.depth.value)};
+void KinectSource::SetError(std::exception_ptr error) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!error_) error_ = error;
+  quit_ = true;
+}
+
+void KinectSource::Record(RecordJob job) {
+  while (!record_queue_.PushWait(job, std::chrono::milliseconds(100)))
+    if (record_queue_.closed()) return;
+}
+
+void KinectSource::RecordLoop() {
+  bool failed = false;
+  while (!record_queue_.closed_and_empty()) {
+    std::optional<RecordJob> job = record_queue_.Pop(std::chrono::milliseconds(100));
+    if (!job || failed) continue;  // after a failure, drain without writing
+    try {
+      if (job->type == 'r')
+        recorder_->AddColor(job->t_us, job->device_ts, job->data.ptr<uint8_t>(), width_, height_);
+      else if (job->type == 'd')
+        recorder_->AddDepth(job->t_us, job->device_ts, job->data.ptr<uint16_t>(), width_, height_);
+      else
+        recorder_->AddAccel(job->t_us, job->device_ts, job->data.ptr(), job->data.total());
+    } catch (...) {
+      failed = true;
+      SetError(std::current_exception());
+    }
+  }
+}
+
+void KinectSource::Deliver(std::vector<StampedPair<LiveFrame>> pairs) {
+  for (StampedPair<LiveFrame>& p : pairs) {
+    RawPair item{p.color.value.host_us, std::move(p.color.value.data), p.depth.value.data};
     {
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_.pairs;
@@ -178,9 +204,10 @@ void KinectSource::Deliver(std::vector<StampedPair<cv::Mat>> pairs) {
         ++stats_.dropped;
       }
     } else {
-      // Wait for the consumer, but stay responsive to a stop request.
+      // Wait for the consumer, even after a stop request, so that every recorded pair is
+      // also processed; only a closed queue (the consumer has gone) abandons the pair.
       while (!queue_.PushWait(item, std::chrono::milliseconds(100)))
-        if (queue_.closed() || (options_.stop && *options_.stop)) return;
+        if (queue_.closed()) return;
     }
   }
 }
@@ -229,13 +256,8 @@ void KinectSource::Loop() {
       if (freenect_update_tilt_state(dev_) < 0) {
         accel_ok_ = false;
       } else if (const freenect_raw_tilt_state* s = freenect_get_tilt_state(dev_)) {
-        try {
-          recorder_->AddAccel(WallClockMicros(), last_depth_ts_, s, sizeof(*s));
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          if (!error_) error_ = std::current_exception();
-          quit_ = true;
-        }
+        const cv::Mat bytes(1, sizeof(*s), CV_8UC1, const_cast<freenect_raw_tilt_state*>(s));
+        Record({'a', WallClockMicros(), last_depth_ts_, bytes.clone()});
       }
     }
   }
@@ -251,17 +273,19 @@ void KinectSource::Loop() {
   // A colour frame still waiting for its next depth frame is decided with the one before,
   // exactly as a replay of the recording ends.
   if (!limit_or_error) Deliver(pairer_.Finish());
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stats_.unpaired = pairer_.unpaired();
-    stats_.recorded = recorder_ ? recorder_->entries() : 0;
-  }
   freenect_stop_video(dev_);
   freenect_stop_depth(dev_);
   freenect_close_device(dev_);
   freenect_shutdown(ctx_);
   dev_ = nullptr;
   ctx_ = nullptr;
+  record_queue_.Close();  // the recording thread writes what is queued, then ends
+  if (record_thread_.joinable()) record_thread_.join();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stats_.unpaired = pairer_.unpaired();
+    stats_.recorded = recorder_ ? recorder_->entries() : 0;
+  }
   recorder_.reset();  // closes INDEX.txt
   queue_.Close();
 }
@@ -298,8 +322,8 @@ std::string KinectSource::Describe() const {
   s << (UnderFakenect() ? "fakenect replay of " + std::string(std::getenv("FAKENECT_PATH"))
                         : "Kinect v1 #" + std::to_string(options_.device))
     << " via libfreenect: RGB " << width_ << "x" << height_
-    << " + raw 11-bit depth, pairing window " << options_.max_time_diff_s << " s, queue "
-    << options_.queue_capacity
+    << " + raw 11-bit depth, pairing window " << options_.max_time_diff_s
+    << " s of the device clock, queue " << options_.queue_capacity
     << (options_.drop_when_behind ? " (drops the oldest pair when the odometry is behind)"
                                   : " (waits for the odometry, no drops)");
   if (!options_.record_folder.empty()) s << ", recording to " << options_.record_folder;

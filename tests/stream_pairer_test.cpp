@@ -69,3 +69,12 @@ TEST_CASE("StreamPairer decides a waiting colour frame when the next one arrives
   CHECK(last[0].depth.value == 101);
   CHECK(p.Finish().empty());
 }
+
+TEST_CASE("KinectClock turns 60 MHz frame stamps into microseconds across the 32-bit wrap") {
+  KinectClock clock;
+  const uint32_t start = 0xffffffffu - 1000000;  // 16.7 ms before the counter wraps
+  CHECK(clock.Micros(start) == 0);
+  CHECK(clock.Micros(start + 2000000u) == 33333);  // wrapped: 2e6 ticks = 33.3 ms later
+  CHECK(clock.Micros(start + 1000u) == 17);        // the other stream, slightly earlier
+  CHECK(clock.Micros(start + 4000000u) == 66667);
+}

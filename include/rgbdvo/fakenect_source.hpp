@@ -12,8 +12,9 @@
 namespace rgbdvo {
 
 struct FakenectSourceOptions {
-  double max_time_diff_s = 0.025;  // colour-depth pairing window, s (Kinect: 30 Hz streams,
-                                   // so the nearest depth frame is at most 1/60 s away + jitter)
+  // Colour-depth pairing window, s: one frame period at 30 Hz. On a healthy stream the nearest
+  // depth frame is at most half a period away; the rest absorbs late callbacks.
+  double max_time_diff_s = 0.034;
   void Check() const;
 };
 
@@ -22,7 +23,8 @@ bool IsFakenectFolder(const std::string& folder);
 
 class FakenectSource : public FrameSource {
  public:
-  // Reads INDEX.txt and pairs colour and depth frames (stream_pairer.hpp). Throws
+  // Reads INDEX.txt and pairs colour and depth frames by their device timestamps, or by the
+  // wall-clock times when the recording has no device timestamps (stream_pairer.hpp). Throws
   // std::runtime_error naming INDEX.txt and the line for a name not of the layout, naming the
   // first missing file (and how many are missing), or for a recording without any pair.
   FakenectSource(const std::string& folder, const FakenectSourceOptions& options);
@@ -40,6 +42,7 @@ class FakenectSource : public FrameSource {
   std::string folder_;
   FakenectSourceOptions options_;
   std::vector<std::pair<Entry, Entry>> pairs_;  // colour, depth
+  bool by_device_clock_ = true;
   int color_frames_ = 0, depth_frames_ = 0, accel_entries_ = 0, unpaired_ = 0;
   size_t next_ = 0;
 };

@@ -5,7 +5,8 @@
 // A thread runs freenect_process_events; the video (RGB 640x480) and depth (raw 11-bit)
 // callbacks copy each frame, optionally record it (fakenect layout), and pair colour with the
 // nearest depth frame (stream_pairer.hpp). Pairs go through a bounded queue to Next(), which
-// converts them (RGB -> BGR, raw disparity -> metres, kinect_depth.hpp). When the consumer is
+// converts them (RGB -> BGR, raw disparity -> metres, kinect_depth.hpp). A second thread writes
+// the recording, fed through a small queue that waits rather than drops. When the consumer is
 // slower than the camera, the queue drops the oldest pair ("newest wins") and counts it, so
 // the odometry stays near real time and memory stays bounded; the recording keeps every frame.
 
@@ -35,7 +36,7 @@ struct KinectSourceOptions {
   int queue_capacity = 4;          // pairs waiting for the consumer (about 6 MB each)
   bool drop_when_behind = true;    // false: wait for the consumer instead of dropping (for
                                    // replays; a live Kinect would lose USB packets meanwhile)
-  double max_time_diff_s = 0.025;  // colour-depth pairing window, s (as FakenectSourceOptions)
+  double max_time_diff_s = 0.034;  // colour-depth pairing window, s (as FakenectSourceOptions)
   std::string record_folder;       // "" = do not record
   bool record_accel = true;        // also record accelerometer entries (a-*.dump)
   double stall_timeout_s = 5.0;    // no frame for this long: treat the device as lost, s
@@ -82,6 +83,10 @@ class KinectSource : public FrameSource {
   CaptureStats stats() const;
 
  private:
+  struct LiveFrame {
+    int64_t host_us = 0;  // arrival time (trajectory and recording timestamps)
+    cv::Mat data;
+  };
   struct RawPair {
     int64_t t_us = 0;
     cv::Mat rgb;  // CV_8UC3, RGB order
@@ -89,8 +94,18 @@ class KinectSource : public FrameSource {
   };
   static void OnVideo(_freenect_device* dev, void* data, uint32_t timestamp);
   static void OnDepth(_freenect_device* dev, void* data, uint32_t timestamp);
+  // A file for the recording thread (so slow disks do not delay the callbacks' timestamps).
+  struct RecordJob {
+    char type = 0;
+    int64_t t_us = 0;
+    uint32_t device_ts = 0;
+    cv::Mat data;  // image, or the accelerometer state's bytes as one row
+  };
   void HandleFrame(bool is_depth, const void* data, uint32_t timestamp);
-  void Deliver(std::vector<StampedPair<cv::Mat>> pairs);
+  void Record(RecordJob job);
+  void RecordLoop();
+  void SetError(std::exception_ptr error);
+  void Deliver(std::vector<StampedPair<LiveFrame>> pairs);
   void Loop();
   void End(CaptureEnd end, const std::string& reason);
 
@@ -99,9 +114,11 @@ class KinectSource : public FrameSource {
   _freenect_device* dev_ = nullptr;
   int width_ = 640, height_ = 480;
   std::unique_ptr<FakenectRecorder> recorder_;
-  StreamPairer<cv::Mat> pairer_;
+  StreamPairer<LiveFrame> pairer_;
+  KinectClock clock_;
   BoundedQueue<RawPair> queue_;
-  std::thread thread_;
+  BoundedQueue<RecordJob> record_queue_;
+  std::thread thread_, record_thread_;
   std::atomic<bool> quit_{false};
   bool depth_this_call_ = false;
   uint32_t last_depth_ts_ = 0;
