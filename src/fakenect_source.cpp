@@ -1,5 +1,6 @@
 #include "rgbdvo/fakenect_source.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -17,8 +18,36 @@ void FakenectSourceOptions::Check() const {
   if (!(max_time_diff_s > 0)) throw std::invalid_argument("max_time_diff_s must be > 0");
 }
 
+namespace {
+
+bool IsFrameFile(const fs::directory_entry& e) {
+  if (!e.is_regular_file()) return false;
+  const std::optional<FakenectName> n = ParseFakenectName(e.path().filename().string());
+  return n && (n->type == 'r' || n->type == 'd');
+}
+
+// Without INDEX.txt: every r-/d-/a- file of the folder in wall-clock order.
+std::vector<std::string> ListFakenectFiles(const std::string& folder) {
+  std::vector<std::pair<int64_t, std::string>> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+    const std::string name = e.path().filename().string();
+    const std::optional<FakenectName> n = ParseFakenectName(name);
+    if (e.is_regular_file() && n) files.emplace_back(n->wallclock_us, name);
+  }
+  std::sort(files.begin(), files.end());
+  std::vector<std::string> names;
+  for (auto& f : files) names.push_back(std::move(f.second));
+  return names;
+}
+
+}  // namespace
+
 bool IsFakenectFolder(const std::string& folder) {
-  return fs::is_regular_file(fs::path(folder) / "INDEX.txt");
+  if (fs::is_regular_file(fs::path(folder) / "INDEX.txt")) return true;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec))
+    if (IsFrameFile(e)) return true;
+  return false;
 }
 
 FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOptions& options)
@@ -26,7 +55,9 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
   options_.Check();
   if (!fs::is_directory(folder)) throw std::runtime_error(folder + ": no such folder");
   const std::string index = (fs::path(folder) / "INDEX.txt").string();
-  const std::vector<std::string> names = ReadFakenectIndex(index);
+  has_index_ = fs::is_regular_file(index);
+  const std::vector<std::string> names =
+      has_index_ ? ReadFakenectIndex(index) : ListFakenectFiles(folder);
   StreamPairer<Entry> pairer(std::llround(options_.max_time_diff_s * 1e6));
   std::string first_missing;
   int missing = 0;
@@ -94,7 +125,8 @@ std::string FakenectSource::Describe() const {
     << options_.max_time_diff_s << " s of the " << (by_device_clock_ ? "device's" : "host's")
     << " clock (" << color_frames_ << " colour, " << depth_frames_ << " depth, " << accel_entries_
     << " accelerometer entries, " << unpaired_
-    << " colour frames without depth), Kinect raw 11-bit depth";
+    << " colour frames without depth), Kinect raw 11-bit depth"
+    << (has_index_ ? "" : "; no INDEX.txt: files taken in wall-clock order");
   return s.str();
 }
 

@@ -107,10 +107,19 @@ TEST_CASE("FakenectSource: missing and truncated files are errors naming the fil
   }
 }
 
-TEST_CASE("OpenRecording detects the fakenect layout") {
-  const std::string dir = SmallRecording("fsrc_open", 1);
+TEST_CASE("OpenRecording detects the fakenect layout, with or without INDEX.txt") {
+  const std::string dir = SmallRecording("fsrc_open", 2);
   std::unique_ptr<FrameSource> source = OpenRecording(dir, {});
   CHECK(dynamic_cast<FakenectSource*>(source.get()) != nullptr);
+  // Without INDEX.txt (as in some copies of NYU Depth V2 raw scenes) the frame files are
+  // taken in wall-clock order.
   fs::remove(dir + "/INDEX.txt");
-  CHECK_THROWS_WITH(OpenRecording(dir, {}), Catch::Contains("INDEX.txt"));
+  FakenectSource listed(dir, {});
+  CHECK(listed.size() == 2);
+  CHECK_THAT(listed.Describe(), Catch::Contains("no INDEX.txt"));
+  CHECK(listed.Next()->timestamp == Approx(Small().start_us * 1e-6).margin(1e-6));
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() != ".yaml") fs::remove(e.path());
+  CHECK_THROWS_WITH(OpenRecording(dir, {}),
+                    Catch::Contains("unknown recording layout") && Catch::Contains("INDEX.txt"));
 }

@@ -18,7 +18,8 @@ struct FakenectSourceOptions {
   void Check() const;
 };
 
-// True when `folder` holds an INDEX.txt.
+// True when `folder` holds an INDEX.txt, or r-/d- frame files (some copies of NYU Depth V2 raw
+// scenes come without INDEX.txt; their files are then taken in wall-clock order).
 bool IsFakenectFolder(const std::string& folder);
 
 class FakenectSource : public FrameSource {
@@ -42,7 +43,7 @@ class FakenectSource : public FrameSource {
   std::string folder_;
   FakenectSourceOptions options_;
   std::vector<std::pair<Entry, Entry>> pairs_;  // colour, depth
-  bool by_device_clock_ = true;
+  bool has_index_ = true, by_device_clock_ = true;
   int color_frames_ = 0, depth_frames_ = 0, accel_entries_ = 0, unpaired_ = 0;
   size_t next_ = 0;
 };
