@@ -28,14 +28,14 @@ struct CaptureArgs {
   std::string calib, csv, tum;
   bool quiet = false, no_drop = false, no_accel = false;
   KinectSourceOptions kinect;
-  OdometryOptions odometry;
+  std::unique_ptr<OdometryFlags> odometry_flags;
 };
 
 constexpr int kExitDeviceLost = 3;
 
 int Capture(CaptureArgs& a) {
+  const OdometryOptions odometry_options = a.odometry_flags->Resolve();
   const Calibration calib = LoadCalibration(a.calib);
-  a.odometry.Check();
   a.kinect.drop_when_behind = !a.no_drop;
   a.kinect.record_accel = !a.no_accel;
   a.kinect.stop = &g_stop;
@@ -64,11 +64,11 @@ int Capture(CaptureArgs& a) {
               << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx
               << " cy=" << calib.cy << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
               << "] m\n";
-    std::istringstream config(a.odometry.ToString());
+    std::istringstream config(odometry_options.ToString());
     for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
     std::cout << "# Ctrl-C stops cleanly" << std::endl;
   }
-  Odometry odometry(a.odometry, calib);
+  Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
   int warned_at = 0;
   const RunSummary summary = RunOdometry(source, odometry, writer_ptrs, [&](const FrameResult& r) {
@@ -121,7 +121,7 @@ void AddCaptureCommand(CLI::App& app) {
   cmd->add_flag("--no-drop", args->no_drop,
                 "wait for the odometry instead of dropping frames (for fakenect replays)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
-  AddOdometryFlags(cmd, &args->odometry);
+  args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Capture(*args);
     if (code != 0) throw CLI::RuntimeError(code);

@@ -111,7 +111,8 @@ std::optional<Frame> FakenectSource::Next() {
   const auto& [color, depth] = pairs_[next_];
   Frame f;
   f.index = static_cast<int>(next_);
-  f.timestamp = color.seconds;
+  f.timestamp = depth.seconds;  // the pose comes from the depth image (frame.hpp)
+  f.color_timestamp = color.seconds;
   f.name = color.file;
   f.bgr = ReadFakenectColor((fs::path(folder_) / color.file).string());
   f.depth_m = DepthFromKinectRaw(ReadFakenectDepth((fs::path(folder_) / depth.file).string()));

@@ -193,7 +193,8 @@ void KinectSource::RecordLoop() {
 
 void KinectSource::Deliver(std::vector<StampedPair<LiveFrame>> pairs) {
   for (StampedPair<LiveFrame>& p : pairs) {
-    RawPair item{p.color.value.host_us, std::move(p.color.value.data), p.depth.value.data};
+    RawPair item{p.color.value.host_us, p.depth.value.host_us, std::move(p.color.value.data),
+                 p.depth.value.data};
     {
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_.pairs;
@@ -303,7 +304,8 @@ std::optional<Frame> KinectSource::Next() {
         std::lock_guard<std::mutex> lock(mutex_);
         f.index = stats_.delivered++;
       }
-      f.timestamp = static_cast<double>(item->t_us) * 1e-6;
+      f.timestamp = static_cast<double>(item->depth_us) * 1e-6;  // the pose's time
+      f.color_timestamp = static_cast<double>(item->color_us) * 1e-6;
       f.name = "kinect frame " + std::to_string(f.index);
       cv::cvtColor(item->rgb, f.bgr, cv::COLOR_RGB2BGR);
       f.depth_m = DepthFromKinectRaw(item->raw);

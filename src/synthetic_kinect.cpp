@@ -93,9 +93,9 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
     ir_poses.push_back(ir0_from_irk);
     const Eigen::Quaterniond q(ir0_from_irk.linear());
     const Eigen::Vector3d p = ir0_from_irk.translation();
-    gt << std::setprecision(6) << static_cast<double>(t) * 1e-6 << ' ' << p.x() << ' ' << p.y()
-       << ' ' << p.z() << ' ' << std::setprecision(7) << q.x() << ' ' << q.y() << ' ' << q.z()
-       << ' ' << q.w() << '\n';
+    gt << std::setprecision(6) << static_cast<double>(t + 1000) * 1e-6 << ' ' << p.x() << ' '
+       << p.y() << ' ' << p.z() << ' ' << std::setprecision(7) << q.x() << ' ' << q.y() << ' '
+       << q.z() << ' ' << q.w() << '\n';
   }
   if (!gt.flush()) throw std::runtime_error(folder + "/groundtruth.txt: write failed");
   SaveCalibration(calib, (fs::path(folder) / "calib.yaml").string());

@@ -52,7 +52,8 @@ TEST_CASE("FakenectSource pairs each colour frame with its depth frame, in metre
     const std::optional<Frame> f = source.Next();
     REQUIRE(f);
     CHECK(f->index == k);
-    CHECK(f->timestamp == Approx((o.start_us + k * o.period_us) * 1e-6).margin(1e-6));
+    CHECK(f->color_timestamp == Approx((o.start_us + k * o.period_us) * 1e-6).margin(1e-6));
+    CHECK(f->timestamp == Approx((o.start_us + k * o.period_us + 1000) * 1e-6).margin(1e-6));
     CHECK(f->bgr.size() == cv::Size(160, 120));
     // The depth is the IR camera's Z, to within the raw quantisation (< 2 cm within 2.5 m).
     const cv::Mat truth = SyntheticScene().RenderDepth(o.ir, path[k] * color_from_ir);
@@ -117,7 +118,7 @@ TEST_CASE("OpenRecording detects the fakenect layout, with or without INDEX.txt"
   FakenectSource listed(dir, {});
   CHECK(listed.size() == 2);
   CHECK_THAT(listed.Describe(), Catch::Contains("no INDEX.txt"));
-  CHECK(listed.Next()->timestamp == Approx(Small().start_us * 1e-6).margin(1e-6));
+  CHECK(listed.Next()->color_timestamp == Approx(Small().start_us * 1e-6).margin(1e-6));
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() != ".yaml") fs::remove(e.path());
   CHECK_THROWS_WITH(OpenRecording(dir, {}),

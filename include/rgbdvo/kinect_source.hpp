@@ -88,9 +88,9 @@ class KinectSource : public FrameSource {
     cv::Mat data;
   };
   struct RawPair {
-    int64_t t_us = 0;
-    cv::Mat rgb;  // CV_8UC3, RGB order
-    cv::Mat raw;  // CV_16UC1 raw disparity
+    int64_t color_us = 0, depth_us = 0;  // host arrival times
+    cv::Mat rgb;                         // CV_8UC3, RGB order
+    cv::Mat raw;                         // CV_16UC1 raw disparity
   };
   static void OnVideo(_freenect_device* dev, void* data, uint32_t timestamp);
   static void OnDepth(_freenect_device* dev, void* data, uint32_t timestamp);

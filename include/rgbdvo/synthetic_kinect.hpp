@@ -46,7 +46,7 @@ std::vector<Rigid3d> MakeKinectRangePath(int n);
 // Writes, into the new folder (refused if not empty, like every recording), one r-, a- and
 // d- entry per pose of `world_from_color` (colour at t_k, accelerometer at t_k + 0.3 ms, depth
 // at t_k + 1 ms, t_k = start + k * period), plus calib.yaml (the calibration above) and
-// groundtruth.txt (TUM format: colour timestamp and the IR camera's pose relative to its first
+// groundtruth.txt (TUM format: depth timestamp and the IR camera's pose relative to its first
 // pose; the odometry measures the IR camera, whose frame its 3D points are in). Returns those
 // IR poses (ir0_from_irk).
 std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
