@@ -33,7 +33,7 @@ struct KinectSourceOptions {
   int device = 0;                  // libfreenect device index
   int max_frames = 0;              // stop after this many colour-depth pairs, 0 = no limit
   double max_seconds = 0;          // stop after this long, s, 0 = no limit
-  int queue_capacity = 4;          // pairs waiting for the consumer (about 6 MB each)
+  int queue_capacity = 4;          // pairs waiting for the consumer (1.5 MB each)
   bool drop_when_behind = true;    // false: wait for the consumer instead of dropping (for
                                    // replays; a live Kinect would lose USB packets meanwhile)
   double max_time_diff_s = 0.034;  // colour-depth pairing window, s (as FakenectSourceOptions)
