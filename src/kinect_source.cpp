@@ -55,8 +55,6 @@ KinectSource::KinectSource(const KinectSourceOptions& options)
       queue_(static_cast<size_t>(std::max(1, options.queue_capacity))),
       record_queue_(8) {
   options_.Check();
-  if (!options_.record_folder.empty())
-    recorder_ = std::make_unique<FakenectRecorder>(options_.record_folder);
   if (freenect_init(&ctx_, nullptr) < 0) {
     ctx_ = nullptr;
     throw std::runtime_error(
@@ -100,6 +98,14 @@ KinectSource::KinectSource(const KinectSourceOptions& options)
   height_ = video.height;
   if (depth.width != width_ || depth.height != height_)
     fail("Kinect: depth mode size differs from the video mode size");
+  // Only now, so that a missing device leaves no empty recording folder behind.
+  if (!options_.record_folder.empty()) {
+    try {
+      recorder_ = std::make_unique<FakenectRecorder>(options_.record_folder);
+    } catch (const std::exception& e) {
+      fail(e.what());
+    }
+  }
   freenect_set_user(dev_, this);
   freenect_set_video_callback(dev_, &KinectSource::OnVideo);
   freenect_set_depth_callback(dev_, &KinectSource::OnDepth);

@@ -236,13 +236,14 @@ TEST_CASE("rgbdvo capture without a Kinect is a clear error") {
   }
   const std::string dir = MakeTempDir("nodevice");
   std::string out;
-  const int code =
-      RunCommand("env -u FAKENECT_PATH " + RgbdvoExe() + " capture --calib " + SourceDir() +
-                     "/calib/kinect_v1_default.yaml --frames 1 --out " + dir + "/t.csv",
-                 &out);
+  const int code = RunCommand("env -u FAKENECT_PATH " + RgbdvoExe() + " capture --calib " +
+                                  SourceDir() + "/calib/kinect_v1_default.yaml --frames 1 --out " +
+                                  dir + "/t.csv --record " + dir + "/rec",
+                              &out);
   INFO(out);
   CHECK(code == 1);
   CHECK_THAT(out, Catch::StartsWith("rgbdvo: error:") && Catch::Contains("Kinect"));
+  CHECK(!fs::exists(dir + "/rec"));  // no empty recording left behind to block a retry
 }
 
 TEST_CASE("rgbdvo capture --record refuses an existing recording and changes nothing") {
