@@ -81,7 +81,7 @@ int Run(const RunArgs& a) {
 
 void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "visual odometry over a recorded folder (TUM RGB-D layout)");
+  CLI::App* cmd = app.add_subcommand("run", "visual odometry over a recorded folder (TUM RGB-D or fakenect layout)");
   cmd->add_option("folder", args->folder, "recording folder")->required();
   cmd->add_option("--calib", args->calib, "calibration YAML (see calib/)")->required();
   cmd->add_option("--out", args->csv, "trajectory CSV, written frame by frame");

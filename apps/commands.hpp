@@ -12,5 +12,7 @@ void AddRunCommand(CLI::App& app);
 void AddCalibrateCommand(CLI::App& app);
 void AddEvalCommand(CLI::App& app);
 void AddPlotCommand(CLI::App& app);
+void AddCaptureCommand(CLI::App& app);
+void AddSynthKinectCommand(CLI::App& app);
 
 }  // namespace rgbdvo::cli

@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   rgbdvo::cli::AddCalibrateCommand(app);
   rgbdvo::cli::AddEvalCommand(app);
   rgbdvo::cli::AddPlotCommand(app);
+  rgbdvo::cli::AddCaptureCommand(app);
+  rgbdvo::cli::AddSynthKinectCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "rgbdvo/fakenect_source.hpp"
 #include "rgbdvo/frame_source.hpp"
 #include "rgbdvo/tum_source.hpp"
 
@@ -11,10 +12,11 @@ namespace rgbdvo {
 
 struct SourceOptions {
   TumSourceOptions tum;
+  FakenectSourceOptions fakenect;
 };
 
-// TUM RGB-D layout (rgb.txt + depth.txt). Throws std::runtime_error naming the folder when it
-// is missing or of no known layout.
+// TUM RGB-D layout (rgb.txt + depth.txt) or libfreenect fakenect layout (INDEX.txt). Throws
+// std::runtime_error naming the folder when it is missing or of no known layout.
 std::unique_ptr<FrameSource> OpenRecording(const std::string& folder, const SourceOptions& options);
 
 }  // namespace rgbdvo

@@ -1,0 +1,131 @@
+// `rgbdvo capture`: visual odometry live from a Kinect v1 (libfreenect), optionally recording.
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "rgbdvo/calibration.hpp"
+#include "rgbdvo/kinect_source.hpp"
+#include "rgbdvo/run.hpp"
+
+namespace rgbdvo::cli {
+namespace {
+
+// Set by the first Ctrl-C (SIGINT); a second one ends the process the default way.
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "needed in a signal handler");
+
+extern "C" void OnSigint(int) {
+  g_stop = true;
+  signal(SIGINT, SIG_DFL);
+}
+
+struct CaptureArgs {
+  std::string calib, csv, tum;
+  bool quiet = false, no_drop = false, no_accel = false;
+  KinectSourceOptions kinect;
+  std::unique_ptr<OdometryFlags> odometry_flags;
+};
+
+constexpr int kExitDeviceLost = 3;
+
+int Capture(CaptureArgs& a) {
+  const OdometryOptions odometry_options = a.odometry_flags->Resolve();
+  const Calibration calib = LoadCalibration(a.calib);
+  a.kinect.drop_when_behind = !a.no_drop;
+  a.kinect.record_accel = !a.no_accel;
+  a.kinect.stop = &g_stop;
+  a.kinect.Check();
+  std::vector<std::unique_ptr<TrajectoryWriter>> writers;
+  if (!a.csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(a.csv));
+  if (!a.tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(a.tum));
+  std::vector<TrajectoryWriter*> writer_ptrs;
+  for (auto& w : writers) writer_ptrs.push_back(w.get());
+
+  g_stop = false;
+  struct sigaction action = {};
+  action.sa_handler = OnSigint;
+  sigemptyset(&action.sa_mask);
+  struct sigaction previous = {};
+  sigaction(SIGINT, &action, &previous);
+  struct Restore {
+    struct sigaction* previous;
+    ~Restore() { sigaction(SIGINT, previous, nullptr); }
+  } restore{&previous};
+
+  KinectSource source(a.kinect);
+  if (!a.quiet) {
+    std::cout << "# source: " << source.Describe() << "\n# calibration: " << a.calib
+              << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
+              << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx
+              << " cy=" << calib.cy << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
+              << "] m\n";
+    std::istringstream config(odometry_options.ToString());
+    for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
+    std::cout << "# Ctrl-C stops cleanly" << std::endl;
+  }
+  Odometry odometry(odometry_options, calib);
+  const bool progress = !a.quiet && isatty(STDERR_FILENO);
+  int warned_at = 0;
+  const RunSummary summary = RunOdometry(source, odometry, writer_ptrs, [&](const FrameResult& r) {
+    const int dropped = source.stats().dropped;
+    if (dropped > 0 && (warned_at == 0 || dropped >= warned_at + 30)) {
+      std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: the odometry is slower than the "
+                << "camera; " << dropped << " frames dropped so far (the newest frame wins)"
+                << std::endl;
+      warned_at = dropped;
+    }
+    if (progress)
+      std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
+  });
+  if (progress) std::cerr << "\n";
+  const CaptureStats stats = source.stats();
+  std::cout << summary.Brief() << "; " << stats.Brief() << std::endl;
+  if (stats.end == CaptureEnd::kDeviceLost) {
+    std::cerr << "rgbdvo: error: " << stats.end_reason
+              << "; the trajectory and recording so far are complete and usable" << std::endl;
+    return kExitDeviceLost;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void AddCaptureCommand(CLI::App& app) {
+  auto args = std::make_shared<CaptureArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "capture", "visual odometry live from a Kinect v1 (libfreenect), optionally recording it");
+  cmd->add_option("--device", args->kinect.device, "libfreenect device index")
+      ->capture_default_str();
+  cmd->add_option("--calib", args->calib,
+                  "calibration YAML (uncalibrated Kinect: calib/kinect_v1_default.yaml)")
+      ->required();
+  cmd->add_option("--frames", args->kinect.max_frames, "stop after N frames (0 = until Ctrl-C)")
+      ->capture_default_str();
+  cmd->add_option("--seconds", args->kinect.max_seconds, "stop after S seconds (0 = until Ctrl-C)")
+      ->capture_default_str();
+  cmd->add_option("--record", args->kinect.record_folder,
+                  "record into this new folder (fakenect layout; never overwrites)");
+  cmd->add_flag("--no-accel", args->no_accel, "do not record accelerometer entries");
+  cmd->add_option("--out", args->csv, "trajectory CSV, written frame by frame");
+  cmd->add_option("--tum", args->tum, "trajectory in TUM format (timestamp tx ty tz qx qy qz qw)");
+  cmd->add_option("--max-dt", args->kinect.max_time_diff_s, "max colour-depth time difference, s")
+      ->capture_default_str();
+  cmd->add_option("--queue", args->kinect.queue_capacity,
+                  "frames waiting for the odometry; when full the oldest is dropped")
+      ->capture_default_str();
+  cmd->add_flag("--no-drop", args->no_drop,
+                "wait for the odometry instead of dropping frames (for fakenect replays)");
+  cmd->add_flag("--quiet", args->quiet, "print only the summary line");
+  args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
+  cmd->callback([args] {
+    const int code = Capture(*args);
+    if (code != 0) throw CLI::RuntimeError(code);
+  });
+}
+
+}  // namespace rgbdvo::cli
