@@ -1,13 +1,12 @@
 // `rgbdvo run FOLDER`: visual odometry over a recorded folder.
-#include <iostream>
-#include <memory>
 #include <unistd.h>
 
+#include <filesystem>
+#include <iostream>
+#include <memory>
 #include <opencv2/core/utility.hpp>
 
 #include "commands.hpp"
-#include <filesystem>
-
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/open_source.hpp"
 #include "rgbdvo/plot.hpp"
@@ -50,8 +49,9 @@ int Run(const RunArgs& a) {
   if (!a.quiet) {
     std::cout << "# source: " << source->Describe() << "\n# calibration: " << a.calib
               << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
-              << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
-              << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m << "] m\n";
+              << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx
+              << " cy=" << calib.cy << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
+              << "] m\n";
     std::istringstream config(odometry_options.ToString());
     for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
     std::cout << std::flush;
@@ -60,9 +60,13 @@ int Run(const RunArgs& a) {
   if (a.run.EffectiveThreads() == 1) cv::setNumThreads(1);
   Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
-  const RunSummary summary = RunOdometry(*source, odometry, writer_ptrs, [&](const FrameResult& r) {
-    if (progress) std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
-  }, a.run);
+  const RunSummary summary = RunOdometry(
+      *source, odometry, writer_ptrs,
+      [&](const FrameResult& r) {
+        if (progress)
+          std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
+      },
+      a.run);
   if (progress) std::cerr << "\n";
   std::cout << summary.Brief() << std::endl;
   if (a.timing) std::cout << summary.Timing() << std::endl;
@@ -81,7 +85,8 @@ int Run(const RunArgs& a) {
 
 void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "visual odometry over a recorded folder (TUM RGB-D or fakenect layout)");
+  CLI::App* cmd = app.add_subcommand(
+      "run", "visual odometry over a recorded folder (TUM RGB-D or fakenect layout)");
   cmd->add_option("folder", args->folder, "recording folder")->required();
   cmd->add_option("--calib", args->calib, "calibration YAML (see calib/)")->required();
   cmd->add_option("--out", args->csv, "trajectory CSV, written frame by frame");

@@ -6,7 +6,8 @@ const char* kGroup = "Odometry (see README; --preset paper = Fiala & Ufkes 2011 
 }
 
 template <typename T>
-void OdometryFlags::Add(const std::string& name, T& (*field)(OdometryOptions&), const std::string& help) {
+void OdometryFlags::Add(const std::string& name, T& (*field)(OdometryOptions&),
+                        const std::string& help) {
   const OdometryOptions defaults;
   CLI::Option* opt = cmd_->add_option(name, field(given_), help)->group(kGroup);
   opt->default_str(CLI::detail::to_string(field(const_cast<OdometryOptions&>(defaults))));
@@ -29,50 +30,74 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
       ->check(CLI::IsMember({"default", "paper"}))
       ->capture_default_str();
   using O = OdometryOptions;
-  Add<int>("--max-features", [](O& o) -> int& { return o.features.max_features; },
-           "SIFT: keep the N strongest, 0 = all");
-  Add<double>("--contrast-threshold", [](O& o) -> double& { return o.features.contrast_threshold; },
-              "SIFT DoG contrast threshold");
-  Add<int>("--octave-layers", [](O& o) -> int& { return o.features.octave_layers; },
-           "SIFT scales per octave");
-  Add<bool>("--sift-upsample", [](O& o) -> bool& { return o.features.upsample_first_octave; },
-            "SIFT: 2x-upsampled first octave (OpenCV) or, false, SIFT on the half image");
-  Add<double>("--ratio", [](O& o) -> double& { return o.matching.ratio; },
-              "Lowe ratio test: best < ratio * second best");
-  AddSwitch("--no-mutual", [](O& o) -> bool& { return o.matching.mutual; }, false,
-            "do not require mutual nearest neighbours");
-  AddSwitch("--mutual", [](O& o) -> bool& { return o.matching.mutual; }, true,
-            "require mutual nearest neighbours (default; not in --preset paper)");
-  Add<double>("--depth-jump", [](O& o) -> double& { return o.lifting.max_depth_jump_ratio; },
-              "bilinear depth, refused across jumps above this fraction (0 = nearest pixel)");
-  Add<int>("--trials", [](O& o) -> int& { return o.ransac.max_trials; }, "RANSAC hypotheses (paper: 200)");
-  Add<int>("--sample-size", [](O& o) -> int& { return o.ransac.sample_size; },
-           "matches per RANSAC hypothesis (paper: 4)");
-  Add<double>("--inlier-dist", [](O& o) -> double& { return o.ransac.inlier_distance_m; },
-              "RANSAC inlier 3D distance, m (paper: 0.015)");
-  Add<double>("--ransac-confidence", [](O& o) -> double& { return o.ransac.confidence; },
-              "stop RANSAC early at this confidence (0 = always --trials, the paper)");
-  Add<int>("--min-inliers", [](O& o) -> int& { return o.verify.min_inliers; },
-           "reject a frame with fewer inliers (paper: 15)");
-  Add<double>("--max-translation", [](O& o) -> double& { return o.verify.max_translation_m; },
-              "reject a larger motion per frame, m (paper: 0.5)");
-  Add<double>("--max-rotation", [](O& o) -> double& { return o.verify.max_rotation_deg; },
-              "reject a larger rotation per frame, deg (paper: 60)");
-  AddSwitch("--no-refine", [](O& o) -> bool& { return o.refine_enabled; }, false,
-            "skip the reprojection+depth refinement (the paper's SVD only)");
-  Add<double>("--pixel-sigma", [](O& o) -> double& { return o.refine.pixel_sigma; },
-              "refinement: keypoint noise, px");
-  Add<double>("--depth-noise", [](O& o) -> double& { return o.refine.depth_noise_coeff; },
-              "refinement: depth noise sigma_z = c*z^2, c in 1/m (Khoshelham & Elberink 2012)");
-  Add<double>("--inlier-sigmas", [](O& o) -> double& { return o.refine.inlier_sigmas; },
-              "refinement: inlier below this whitened error");
-  Add<double>("--keyframe-ratio", [](O& o) -> double& { return o.keyframe_inlier_ratio; },
-              "new keyframe when inliers < ratio * the keyframe's first inliers (0 = every frame)");
-  AddSwitch("--no-undistort", [](O& o) -> bool& { return o.undistort; }, false,
-            "ignore the calibration's lens distortion (the paper's pinhole model)");
-  Add<int>("--max-rejected-run", [](O& o) -> int& { return o.max_rejected_run; },
-           "after N rejected frames in a row restart from the current frame (0 = never)");
-  Add<uint32_t>("--seed", [](O& o) -> uint32_t& { return o.seed; }, "RANSAC random seed");
+  Add<int>(
+      "--max-features", [](O& o) -> int& { return o.features.max_features; },
+      "SIFT: keep the N strongest, 0 = all");
+  Add<double>(
+      "--contrast-threshold", [](O& o) -> double& { return o.features.contrast_threshold; },
+      "SIFT DoG contrast threshold");
+  Add<int>(
+      "--octave-layers", [](O& o) -> int& { return o.features.octave_layers; },
+      "SIFT scales per octave");
+  Add<bool>(
+      "--sift-upsample", [](O& o) -> bool& { return o.features.upsample_first_octave; },
+      "SIFT: 2x-upsampled first octave (OpenCV) or, false, SIFT on the half image");
+  Add<double>(
+      "--ratio", [](O& o) -> double& { return o.matching.ratio; },
+      "Lowe ratio test: best < ratio * second best");
+  AddSwitch(
+      "--no-mutual", [](O& o) -> bool& { return o.matching.mutual; }, false,
+      "do not require mutual nearest neighbours");
+  AddSwitch(
+      "--mutual", [](O& o) -> bool& { return o.matching.mutual; }, true,
+      "require mutual nearest neighbours (default; not in --preset paper)");
+  Add<double>(
+      "--depth-jump", [](O& o) -> double& { return o.lifting.max_depth_jump_ratio; },
+      "bilinear depth, refused across jumps above this fraction (0 = nearest pixel)");
+  Add<int>(
+      "--trials", [](O& o) -> int& { return o.ransac.max_trials; },
+      "RANSAC hypotheses (paper: 200)");
+  Add<int>(
+      "--sample-size", [](O& o) -> int& { return o.ransac.sample_size; },
+      "matches per RANSAC hypothesis (paper: 4)");
+  Add<double>(
+      "--inlier-dist", [](O& o) -> double& { return o.ransac.inlier_distance_m; },
+      "RANSAC inlier 3D distance, m (paper: 0.015)");
+  Add<double>(
+      "--ransac-confidence", [](O& o) -> double& { return o.ransac.confidence; },
+      "stop RANSAC early at this confidence (0 = always --trials, the paper)");
+  Add<int>(
+      "--min-inliers", [](O& o) -> int& { return o.verify.min_inliers; },
+      "reject a frame with fewer inliers (paper: 15)");
+  Add<double>(
+      "--max-translation", [](O& o) -> double& { return o.verify.max_translation_m; },
+      "reject a larger motion per frame, m (paper: 0.5)");
+  Add<double>(
+      "--max-rotation", [](O& o) -> double& { return o.verify.max_rotation_deg; },
+      "reject a larger rotation per frame, deg (paper: 60)");
+  AddSwitch(
+      "--no-refine", [](O& o) -> bool& { return o.refine_enabled; }, false,
+      "skip the reprojection+depth refinement (the paper's SVD only)");
+  Add<double>(
+      "--pixel-sigma", [](O& o) -> double& { return o.refine.pixel_sigma; },
+      "refinement: keypoint noise, px");
+  Add<double>(
+      "--depth-noise", [](O& o) -> double& { return o.refine.depth_noise_coeff; },
+      "refinement: depth noise sigma_z = c*z^2, c in 1/m (Khoshelham & Elberink 2012)");
+  Add<double>(
+      "--inlier-sigmas", [](O& o) -> double& { return o.refine.inlier_sigmas; },
+      "refinement: inlier below this whitened error");
+  Add<double>(
+      "--keyframe-ratio", [](O& o) -> double& { return o.keyframe_inlier_ratio; },
+      "new keyframe when inliers < ratio * the keyframe's first inliers (0 = every frame)");
+  AddSwitch(
+      "--no-undistort", [](O& o) -> bool& { return o.undistort; }, false,
+      "ignore the calibration's lens distortion (the paper's pinhole model)");
+  Add<int>(
+      "--max-rejected-run", [](O& o) -> int& { return o.max_rejected_run; },
+      "after N rejected frames in a row restart from the current frame (0 = never)");
+  Add<uint32_t>(
+      "--seed", [](O& o) -> uint32_t& { return o.seed; }, "RANSAC random seed");
 }
 
 OdometryOptions OdometryFlags::Resolve() const {

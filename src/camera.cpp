@@ -75,7 +75,8 @@ std::optional<double> SampleDepthBilinear(const Calibration& c, const cv::Mat& d
 }
 
 std::optional<Eigen::Vector3d> LiftColorPixel(const Calibration& c, const cv::Mat& depth_m,
-                                              const Eigen::Vector2d& uv_vis, double max_jump_ratio) {
+                                              const Eigen::Vector2d& uv_vis,
+                                              double max_jump_ratio) {
   const Eigen::Vector2d uv_ir = ColorToIr(c, uv_vis);
   const std::optional<double> d = max_jump_ratio > 0
                                       ? SampleDepthBilinear(c, depth_m, uv_ir, max_jump_ratio)

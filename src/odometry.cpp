@@ -31,11 +31,11 @@ OdometryOptions PresetOptions(const std::string& name) {
   OdometryOptions o;
   if (name == "default") return o;
   if (name == "paper") {
-    o.matching.mutual = false;      // the paper names no matching rule; a plain ratio test
-    o.refine_enabled = false;       // SVD on the inliers only (eq. 5-10)
-    o.keyframe_inlier_ratio = 0;    // successive frames
-    o.ransac.confidence = 0;        // always 200 trials
-    o.undistort = false;            // "a perfect pinhole model was used"
+    o.matching.mutual = false;           // the paper names no matching rule; a plain ratio test
+    o.refine_enabled = false;            // SVD on the inliers only (eq. 5-10)
+    o.keyframe_inlier_ratio = 0;         // successive frames
+    o.ransac.confidence = 0;             // always 200 trials
+    o.undistort = false;                 // "a perfect pinhole model was used"
     o.lifting.max_depth_jump_ratio = 0;  // depth at the nearest pixel
     return o;
   }
@@ -75,10 +75,14 @@ std::string OdometryOptions::ToString() const {
 
 std::string FrameResult::StatusString() const {
   switch (status) {
-    case FrameStatus::kFirst: return "first";
-    case FrameStatus::kAccepted: return "accepted";
-    case FrameStatus::kRejected: return "rejected:" + reason;
-    case FrameStatus::kLost: return "lost:" + reason;
+    case FrameStatus::kFirst:
+      return "first";
+    case FrameStatus::kAccepted:
+      return "accepted";
+    case FrameStatus::kRejected:
+      return "rejected:" + reason;
+    case FrameStatus::kLost:
+      return "lost:" + reason;
   }
   return "unknown";
 }
@@ -107,7 +111,8 @@ RansacResult Odometry::Estimate(const Reference& ref, const Features& cur, const
   r->matches = static_cast<int>(matches.size());
 
   t0 = std::chrono::steady_clock::now();
-  const std::vector<PointPair> pairs = LiftMatches(calib_, options_.lifting, ref.depth_m, depth_m, ref.features, cur, matches);
+  const std::vector<PointPair> pairs =
+      LiftMatches(calib_, options_.lifting, ref.depth_m, depth_m, ref.features, cur, matches);
   r->times.lifting += Since(t0);
   r->pairs = static_cast<int>(pairs.size());
 
@@ -116,7 +121,8 @@ RansacResult Odometry::Estimate(const Reference& ref, const Features& cur, const
   if (ransac.success && options_.refine_enabled) {
     // Refine on the RANSAC inliers, re-select inliers by whitened error, refine again.
     const double f = 0.5 * (calib_.fx + calib_.fy);
-    Rigid3d T = RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
+    Rigid3d T =
+        RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
     std::vector<int> inliers;
     for (size_t k = 0; k < pairs.size(); ++k)
       if (WhitenedError(options_.refine, f, pairs[k], T) < options_.refine.inlier_sigmas)

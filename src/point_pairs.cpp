@@ -7,13 +7,14 @@
 namespace rgbdvo {
 
 void LiftOptions::Check() const {
-  if (!(max_depth_jump_ratio >= 0)) throw std::invalid_argument("max_depth_jump_ratio must be >= 0");
+  if (!(max_depth_jump_ratio >= 0))
+    throw std::invalid_argument("max_depth_jump_ratio must be >= 0");
 }
 
 std::vector<PointPair> LiftMatches(const Calibration& calib, const LiftOptions& options,
-                                   const cv::Mat& depth_prev,
-                                   const cv::Mat& depth_cur, const Features& prev,
-                                   const Features& cur, const std::vector<cv::DMatch>& matches) {
+                                   const cv::Mat& depth_prev, const cv::Mat& depth_cur,
+                                   const Features& prev, const Features& cur,
+                                   const std::vector<cv::DMatch>& matches) {
   std::vector<PointPair> pairs;
   pairs.reserve(matches.size());
   for (const cv::DMatch& m : matches) {

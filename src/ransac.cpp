@@ -39,8 +39,8 @@ void RansacOptions::Check() const {
 
 std::string RansacResult::Brief() const {
   std::ostringstream s;
-  s << (success ? "RANSAC ok" : "RANSAC failed") << ": " << inliers.size() << " inliers, "
-    << trials << " trials, rms " << rms_m * 1000 << " mm";
+  s << (success ? "RANSAC ok" : "RANSAC failed") << ": " << inliers.size() << " inliers, " << trials
+    << " trials, rms " << rms_m * 1000 << " mm";
   if (!success) s << " (" << reason << ")";
   return s.str();
 }

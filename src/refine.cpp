@@ -25,8 +25,8 @@ Eigen::Vector3d Residual(const RefineOptions& o, double f, const Eigen::Vector3d
   const double su = o.pixel_sigma / f;  // pixel noise in normalised coordinates
   const double sz = o.depth_noise_coeff * obs.z() * obs.z();
   const double iz = 1.0 / q.z();
-  const Eigen::Vector3d r((q.x() * iz - obs.x() / obs.z()) / su, (q.y() * iz - obs.y() / obs.z()) / su,
-                          (q.z() - obs.z()) / sz);
+  const Eigen::Vector3d r((q.x() * iz - obs.x() / obs.z()) / su,
+                          (q.y() * iz - obs.y() / obs.z()) / su, (q.z() - obs.z()) / sz);
   if (J) {
     *J << iz / su, 0, -q.x() * iz * iz / su, 0, iz / su, -q.y() * iz * iz / su, 0, 0, 1 / sz;
   }
@@ -44,8 +44,8 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
   const Eigen::Matrix3d Rt = T.linear().transpose();
   for (int k : idx) {
     const PointPair& p = pairs[k];
-    const Eigen::Vector3d q = T * p.p_cur;                                // cur point in prev
-    const Eigen::Vector3d s = Rt * (p.p_prev - T.translation());          // prev point in cur
+    const Eigen::Vector3d q = T * p.p_cur;                        // cur point in prev
+    const Eigen::Vector3d s = Rt * (p.p_prev - T.translation());  // prev point in cur
     if (q.z() <= 1e-6 || s.z() <= 1e-6) continue;
     Eigen::Matrix3d Jq, Js;
     const Eigen::Vector3d rq = Residual(o, f, q, p.p_prev, H ? &Jq : nullptr);
@@ -56,7 +56,7 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
       cost += Huber(e, o.huber_sigmas);
       if (!H) continue;
       const double w = e <= o.huber_sigmas ? 1.0 : o.huber_sigmas / e;  // IRLS weight
-      Mat36 dpoint;  // d(point)/d(delta)
+      Mat36 dpoint;                                                     // d(point)/d(delta)
       if (side == 0) {
         dpoint << -Hat(q), Eigen::Matrix3d::Identity();  // Exp(d) q ~ q + w x q + v
       } else {
@@ -101,7 +101,8 @@ double WhitenedError(const RefineOptions& o, double f, const PointPair& p, const
   const Eigen::Vector3d q = T * p.p_cur;
   const Eigen::Vector3d s = T.linear().transpose() * (p.p_prev - T.translation());
   if (q.z() <= 1e-6 || s.z() <= 1e-6) return std::numeric_limits<double>::infinity();
-  return std::max(Residual(o, f, q, p.p_prev, nullptr).norm(), Residual(o, f, s, p.p_cur, nullptr).norm());
+  return std::max(Residual(o, f, q, p.p_prev, nullptr).norm(),
+                  Residual(o, f, s, p.p_cur, nullptr).norm());
 }
 
 RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,

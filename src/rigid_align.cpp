@@ -8,7 +8,9 @@ std::optional<Rigid3d> AlignRigid(const std::vector<PointPair>& pairs,
                                   const std::vector<int>& indices) {
   const size_t n = indices.empty() ? pairs.size() : indices.size();
   if (n < 3) return std::nullopt;
-  auto at = [&](size_t k) -> const PointPair& { return indices.empty() ? pairs[k] : pairs[indices[k]]; };
+  auto at = [&](size_t k) -> const PointPair& {
+    return indices.empty() ? pairs[k] : pairs[indices[k]];
+  };
 
   Eigen::Vector3d c_prev = Eigen::Vector3d::Zero(), c_cur = Eigen::Vector3d::Zero();
   for (size_t k = 0; k < n; ++k) {

@@ -49,7 +49,8 @@ cv::Vec3b SampleTexture(const cv::Mat& tex, double s, double t) {
   for (int c = 0; c < 3; ++c) {
     const double v = (1 - ax) * (1 - ay) * tex.at<cv::Vec3b>(y0, x0)[c] +
                      ax * (1 - ay) * tex.at<cv::Vec3b>(y0, x1)[c] +
-                     (1 - ax) * ay * tex.at<cv::Vec3b>(y1, x0)[c] + ax * ay * tex.at<cv::Vec3b>(y1, x1)[c];
+                     (1 - ax) * ay * tex.at<cv::Vec3b>(y1, x0)[c] +
+                     ax * ay * tex.at<cv::Vec3b>(y1, x1)[c];
     out[c] = cv::saturate_cast<uchar>(v);
   }
   return out;
@@ -108,7 +109,8 @@ cv::Mat SyntheticScene::RenderColor(const PinholeCamera& cam, const Rigid3d& wor
   const Eigen::Matrix3d R = world_from_cam.linear();
   for (int v = 0; v < cam.height; ++v)
     for (int u = 0; u < cam.width; ++u) {
-      const Eigen::Vector3d d = R * Eigen::Vector3d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1);
+      const Eigen::Vector3d d =
+          R * Eigen::Vector3d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1);
       double t;
       cv::Vec3b c;
       if (Cast(o, d, &t, &c)) img.at<cv::Vec3b>(v, u) = c;
@@ -123,7 +125,8 @@ cv::Mat SyntheticScene::RenderDepth(const PinholeCamera& cam, const Rigid3d& wor
   for (int v = 0; v < cam.height; ++v)
     for (int u = 0; u < cam.width; ++u) {
       // The ray has camera-frame Z = 1, so the hit parameter is the Z-depth.
-      const Eigen::Vector3d d = R * Eigen::Vector3d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1);
+      const Eigen::Vector3d d =
+          R * Eigen::Vector3d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1);
       double t;
       if (Cast(o, d, &t, nullptr)) depth.at<float>(v, u) = static_cast<float>(t);
     }
@@ -141,7 +144,8 @@ std::vector<Rigid3d> MakeSmoothPath(int n, double step_m, double step_deg) {
                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()))
                      .toRotationMatrix();
-    T.translation() = step_m * Eigen::Vector3d(10 * std::sin(k / 10.0), 4 * std::sin(k / 8.0), 0.8 * k);
+    T.translation() =
+        step_m * Eigen::Vector3d(10 * std::sin(k / 10.0), 4 * std::sin(k / 8.0), 0.8 * k);
     path.push_back(T);
   }
   return path;
@@ -159,15 +163,16 @@ std::vector<double> WriteTumSequence(const std::string& folder, const SyntheticS
   if (!rgb_list || !depth_list || !gt) throw std::runtime_error(folder + ": cannot write lists");
   rgb_list << "# color images\n# timestamp filename\n" << std::fixed << std::setprecision(6);
   depth_list << "# depth maps\n# timestamp filename\n" << std::fixed << std::setprecision(6);
-  gt << "# ground truth trajectory\n# timestamp tx ty tz qx qy qz qw\n" << std::fixed
-     << std::setprecision(6);
+  gt << "# ground truth trajectory\n# timestamp tx ty tz qx qy qz qw\n"
+     << std::fixed << std::setprecision(6);
   std::vector<double> stamps;
   for (size_t k = 0; k < world_from_cam.size(); ++k) {
     const double t = 1000.0 + static_cast<double>(k) / 30.0;
     char name[32];
     std::snprintf(name, sizeof(name), "%06zu.png", k);
     const std::string rgb = std::string("rgb/") + name, depth = std::string("depth/") + name;
-    if (!cv::imwrite((fs::path(folder) / rgb).string(), scene.RenderColor(camera, world_from_cam[k])) ||
+    if (!cv::imwrite((fs::path(folder) / rgb).string(),
+                     scene.RenderColor(camera, world_from_cam[k])) ||
         !cv::imwrite((fs::path(folder) / depth).string(),
                      Scaled16FromDepth(scene.RenderDepth(camera, world_from_cam[k]), 5000.0)))
       throw std::runtime_error(folder + ": cannot write frame " + name);

@@ -55,9 +55,8 @@ TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
   std::sort(depth.begin(), depth.end(),
             [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });
   for (const TumListEntry& r : rgb) {
-    auto it = std::lower_bound(
-        depth.begin(), depth.end(), r.timestamp,
-        [](const TumListEntry& d, double t) { return d.timestamp < t; });
+    auto it = std::lower_bound(depth.begin(), depth.end(), r.timestamp,
+                               [](const TumListEntry& d, double t) { return d.timestamp < t; });
     const TumListEntry* best = nullptr;
     if (it != depth.end()) best = &*it;
     if (it != depth.begin()) {
@@ -87,10 +86,12 @@ std::optional<Frame> TumSource::Next() {
   f.name = p.rgb.path;
   f.bgr = cv::imread(rgb_path, cv::IMREAD_COLOR);
   if (f.bgr.empty())
-    throw std::runtime_error(rgb_path + ": cannot read colour image (missing, corrupt or truncated)");
+    throw std::runtime_error(rgb_path +
+                             ": cannot read colour image (missing, corrupt or truncated)");
   const cv::Mat raw = cv::imread(depth_path, cv::IMREAD_UNCHANGED);
   if (raw.empty())
-    throw std::runtime_error(depth_path + ": cannot read depth image (missing, corrupt or truncated)");
+    throw std::runtime_error(depth_path +
+                             ": cannot read depth image (missing, corrupt or truncated)");
   if (raw.type() != CV_16UC1)
     throw std::runtime_error(depth_path + ": depth image must be 16-bit single channel");
   if (raw.size() != f.bgr.size())

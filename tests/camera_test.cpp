@@ -44,7 +44,8 @@ TEST_CASE("LiftColorPixel maps through eq. 1 and samples the depth there") {
   cv::Mat depth(480, 640, CV_32F, cv::Scalar(0));
   const Eigen::Vector2d uv_vis(300, 200);
   const Eigen::Vector2d uv_ir = ColorToIr(c, uv_vis);  // (301, 203)
-  depth.at<float>(static_cast<int>(std::round(uv_ir.y())), static_cast<int>(std::round(uv_ir.x()))) = 2.5f;
+  depth.at<float>(static_cast<int>(std::round(uv_ir.y())),
+                  static_cast<int>(std::round(uv_ir.x()))) = 2.5f;
   const auto X = LiftColorPixel(c, depth, uv_vis);
   REQUIRE(X);
   CHECK(X->z() == Approx(2.5));
@@ -64,9 +65,9 @@ TEST_CASE("Depth 0, out-of-range depth and out-of-image pixels are excluded") {
   CHECK_FALSE(SampleDepth(c, depth, {20, 20}));
   CHECK_FALSE(SampleDepth(c, depth, {30, 30}));
   CHECK(SampleDepth(c, depth, {11, 10}));
-  for (const Eigen::Vector2d& uv : {Eigen::Vector2d(-0.6, 5), Eigen::Vector2d(5, -0.6),
-                                   Eigen::Vector2d(639.6, 5), Eigen::Vector2d(5, 479.6),
-                                   Eigen::Vector2d(1e9, 1e9), Eigen::Vector2d(NAN, 5)})
+  for (const Eigen::Vector2d& uv :
+       {Eigen::Vector2d(-0.6, 5), Eigen::Vector2d(5, -0.6), Eigen::Vector2d(639.6, 5),
+        Eigen::Vector2d(5, 479.6), Eigen::Vector2d(1e9, 1e9), Eigen::Vector2d(NAN, 5)})
     CHECK_FALSE(SampleDepth(c, depth, uv));
   CHECK(SampleDepth(c, depth, {639.4, 479.4}));
   // A colour pixel whose mapped IR pixel leaves the image is excluded too.
@@ -92,7 +93,8 @@ TEST_CASE("BackProject removes lens distortion and ProjectIr puts it back") {
   // Off-centre, distortion matters: the undistorted ray differs from the pinhole one by pixels.
   Calibration pinhole = c;
   pinhole.dist_ir = {0, 0, 0, 0, 0};
-  const Eigen::Vector3d corner = BackProject(c, {5, 5}, 2.0), plain = BackProject(pinhole, {5, 5}, 2.0);
+  const Eigen::Vector3d corner = BackProject(c, {5, 5}, 2.0),
+                        plain = BackProject(pinhole, {5, 5}, 2.0);
   CHECK((corner - plain).norm() * c.fx / 2.0 > 3.0);
 }
 

@@ -1,11 +1,12 @@
 #include "test_support.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <array>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace rgbdvo::test {
 
@@ -53,9 +54,9 @@ std::vector<PointPair> SynthesizePairs(std::mt19937& rng, const Rigid3d& prev_fr
 
 std::string MakeTempDir(const std::string& tag) {
   static std::atomic<int> counter{0};
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("rgbdvo_test_" + tag + "_" + std::to_string(getpid()) + "_" +
-                    std::to_string(counter++));
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      ("rgbdvo_test_" + tag + "_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

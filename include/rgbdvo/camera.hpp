@@ -1,10 +1,9 @@
 #pragma once
 // Colour pixel -> IR pixel -> 3D point (paper section 2.1, eq. 1 and 4).
 
-#include <optional>
-
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <optional>
 
 #include "rgbdvo/calibration.hpp"
 
@@ -17,8 +16,9 @@ Eigen::Vector2d ColorToIr(const Calibration& calib, const Eigen::Vector2d& uv_vi
 // dist_ir removed (fixed-point inversion of OpenCV's model, as cv::undistortPoints does).
 Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_ir);
 
-// Paper eq. 4 (plus the lens distortion the paper neglects, when dist_ir is set): X = depth * K_ir^-1 [u_ir, v_ir, 1]^T. `depth_m` is the Z coordinate (the Kinect
-// and TUM depth images store Z, not the range along the ray), so the result has Z = depth_m.
+// Paper eq. 4 (plus the lens distortion the paper neglects, when dist_ir is set): X = depth *
+// K_ir^-1 [u_ir, v_ir, 1]^T. `depth_m` is the Z coordinate (the Kinect and TUM depth images store
+// Z, not the range along the ray), so the result has Z = depth_m.
 Eigen::Vector3d BackProject(const Calibration& calib, const Eigen::Vector2d& uv_ir, double depth_m);
 
 // Inverse of BackProject: the IR pixel of a point in the IR camera frame (Z > 0), distorted.

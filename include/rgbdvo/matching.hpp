@@ -1,9 +1,8 @@
 #pragma once
 // Descriptor matching between two frames' features.
 
-#include <vector>
-
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "rgbdvo/features.hpp"
 

@@ -8,9 +8,9 @@
 namespace rgbdvo {
 
 struct MotionCheckOptions {
-  int min_inliers = 15;             // fewer RANSAC inliers -> reject (paper: 15)
-  double max_translation_m = 0.5;   // larger motion per frame -> reject (paper: 50 cm)
-  double max_rotation_deg = 60.0;   // larger rotation per frame -> reject (paper: 60 degrees)
+  int min_inliers = 15;            // fewer RANSAC inliers -> reject (paper: 15)
+  double max_translation_m = 0.5;  // larger motion per frame -> reject (paper: 50 cm)
+  double max_rotation_deg = 60.0;  // larger rotation per frame -> reject (paper: 60 degrees)
   void Check() const;
 };
 

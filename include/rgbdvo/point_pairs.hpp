@@ -1,10 +1,9 @@
 #pragma once
 // 2D matches -> 3D point pairs through the depth images (paper section 3).
 
-#include <vector>
-
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/features.hpp"
@@ -25,8 +24,8 @@ struct LiftOptions {
 
 // Lifts every match whose two keypoints have a depth reading; matches without depth are dropped.
 std::vector<PointPair> LiftMatches(const Calibration& calib, const LiftOptions& options,
-                                   const cv::Mat& depth_prev,
-                                   const cv::Mat& depth_cur, const Features& prev,
-                                   const Features& cur, const std::vector<cv::DMatch>& matches);
+                                   const cv::Mat& depth_prev, const cv::Mat& depth_cur,
+                                   const Features& prev, const Features& cur,
+                                   const std::vector<cv::DMatch>& matches);
 
 }  // namespace rgbdvo

@@ -29,8 +29,8 @@ struct RansacResult {
   Rigid3d prev_from_cur = Rigid3d::Identity();  // refined on the inliers
   std::vector<int> inliers;                     // indices into the pairs
   int trials = 0;
-  double rms_m = 0;     // RMS 3D residual of the inliers after refinement
-  std::string reason;   // why it failed ("" on success)
+  double rms_m = 0;    // RMS 3D residual of the inliers after refinement
+  std::string reason;  // why it failed ("" on success)
   std::string Brief() const;
 };
 

@@ -11,12 +11,12 @@
 namespace rgbdvo {
 
 struct RefineOptions {
-  double pixel_sigma = 1.0;              // keypoint localisation noise, pixels
-  double depth_noise_coeff = 1.425e-3;   // Kinect depth noise sigma_z = c * z^2, 1/m
-                                         // (Khoshelham & Elberink 2012)
-  double huber_sigmas = 2.0;             // Huber threshold on a whitened residual block
-  double inlier_sigmas = 4.0;            // a pair is an inlier below this whitened error
-  int max_iterations = 10;               // Levenberg-Marquardt iterations
+  double pixel_sigma = 1.0;             // keypoint localisation noise, pixels
+  double depth_noise_coeff = 1.425e-3;  // Kinect depth noise sigma_z = c * z^2, 1/m
+                                        // (Khoshelham & Elberink 2012)
+  double huber_sigmas = 2.0;            // Huber threshold on a whitened residual block
+  double inlier_sigmas = 4.0;           // a pair is an inlier below this whitened error
+  int max_iterations = 10;              // Levenberg-Marquardt iterations
   void Check() const;
 };
 

@@ -2,12 +2,11 @@
 // A synthetic RGB-D world for tests: a textured box room with a few textured blocks, ray-cast
 // exactly (no noise unless asked), seen by pinhole cameras along a known path.
 
+#include <Eigen/Core>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <opencv2/core.hpp>
 
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/geometry.hpp"
