@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <condition_variable>
-#include <deque>
 #include <exception>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+
+#include "rgbdvo/bounded_queue.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -45,41 +44,6 @@ Decoded DecodeNext(FrameSource& source, const SiftExtractor& extractor) {
   return d;
 }
 
-// Single-producer single-consumer queue holding at most `capacity` items.
-class BoundedQueue {
- public:
-  explicit BoundedQueue(size_t capacity) : capacity_(capacity) {}
-  // False when cancelled (the item is dropped).
-  bool Push(Decoded d) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    not_full_.wait(lock, [&] { return cancelled_ || items_.size() < capacity_; });
-    if (cancelled_) return false;
-    items_.push_back(std::move(d));
-    not_empty_.notify_one();
-    return true;
-  }
-  Decoded Pop() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    not_empty_.wait(lock, [&] { return !items_.empty(); });
-    Decoded d = std::move(items_.front());
-    items_.pop_front();
-    not_full_.notify_one();
-    return d;
-  }
-  void Cancel() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    cancelled_ = true;
-    not_full_.notify_all();
-  }
-
- private:
-  const size_t capacity_;
-  std::mutex mutex_;
-  std::condition_variable not_full_, not_empty_;
-  std::deque<Decoded> items_;
-  bool cancelled_ = false;
-};
-
 // Decodes and extracts on its own thread into a bounded queue; stops and joins when destroyed
 // (also when the consumer throws).
 class Prefetcher {
@@ -89,17 +53,23 @@ class Prefetcher {
           for (;;) {
             Decoded d = DecodeNext(source, extractor);
             const bool last = !d.frame || d.error;
-            if (!queue_.Push(std::move(d)) || last) return;
+            // Waits for room; false once the consumer has closed the queue (then d is dropped).
+            if (!queue_.PushWait(std::move(d), kForever) || last) return;
           }
         }) {}
   ~Prefetcher() {
-    queue_.Cancel();
+    queue_.Close();
     thread_.join();
   }
-  Decoded Next() { return queue_.Pop(); }
+  Decoded Next() {
+    std::optional<Decoded> d = queue_.Pop(kForever);  // the producer always ends with an item
+    if (!d) throw std::logic_error("prefetch queue closed while the run was reading it");
+    return std::move(*d);
+  }
 
  private:
-  BoundedQueue queue_;
+  static constexpr std::chrono::hours kForever{24 * 365};
+  BoundedQueue<Decoded> queue_;
   std::thread thread_;
 };
 
