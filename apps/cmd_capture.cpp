@@ -11,6 +11,7 @@
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/kinect_source.hpp"
 #include "rgbdvo/run.hpp"
+#include "run_common.hpp"
 
 namespace rgbdvo::cli {
 namespace {
@@ -25,7 +26,8 @@ extern "C" void OnSigint(int) {
 }
 
 struct CaptureArgs {
-  std::string calib, csv, tum;
+  std::string calib;
+  TrajectoryOutputs outputs;
   bool quiet = false, no_drop = false, no_accel = false;
   KinectSourceOptions kinect;
   std::unique_ptr<OdometryFlags> odometry_flags;
@@ -40,9 +42,7 @@ int Capture(CaptureArgs& a) {
   a.kinect.record_accel = !a.no_accel;
   a.kinect.stop = &g_stop;
   a.kinect.Check();
-  std::vector<std::unique_ptr<TrajectoryWriter>> writers;
-  if (!a.csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(a.csv));
-  if (!a.tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(a.tum));
+  const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
 
@@ -59,13 +59,7 @@ int Capture(CaptureArgs& a) {
 
   KinectSource source(a.kinect);
   if (!a.quiet) {
-    std::cout << "# source: " << source.Describe() << "\n# calibration: " << a.calib
-              << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
-              << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx
-              << " cy=" << calib.cy << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
-              << "] m\n";
-    std::istringstream config(odometry_options.ToString());
-    for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
+    PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options);
     std::cout << "# Ctrl-C stops cleanly" << std::endl;
   }
   Odometry odometry(odometry_options, calib);
@@ -111,8 +105,7 @@ void AddCaptureCommand(CLI::App& app) {
   cmd->add_option("--record", args->kinect.record_folder,
                   "record into this new folder (fakenect layout; never overwrites)");
   cmd->add_flag("--no-accel", args->no_accel, "do not record accelerometer entries");
-  cmd->add_option("--out", args->csv, "trajectory CSV, written frame by frame");
-  cmd->add_option("--tum", args->tum, "trajectory in TUM format (timestamp tx ty tz qx qy qz qw)");
+  args->outputs.AddFlags(cmd);
   cmd->add_option("--max-dt", args->kinect.max_time_diff_s, "max colour-depth time difference, s")
       ->capture_default_str();
   cmd->add_option("--queue", args->kinect.queue_capacity,

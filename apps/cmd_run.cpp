@@ -11,12 +11,14 @@
 #include "rgbdvo/open_source.hpp"
 #include "rgbdvo/plot.hpp"
 #include "rgbdvo/run.hpp"
+#include "run_common.hpp"
 
 namespace rgbdvo::cli {
 namespace {
 
 struct RunArgs {
-  std::string folder, calib, csv, tum, plot;
+  std::string folder, calib, plot;
+  TrajectoryOutputs outputs;
   bool quiet = false, timing = false;
   RunOptions run;
   SourceOptions source;
@@ -38,22 +40,14 @@ int Run(const RunArgs& a) {
               << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
               << " s (first: " << tum->unpaired().front().path << ")\n";
   }
-  std::vector<std::unique_ptr<TrajectoryWriter>> writers;
-  if (!a.csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(a.csv));
-  if (!a.tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(a.tum));
+  const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
   PoseRecorder recorder;
   if (!a.plot.empty()) writer_ptrs.push_back(&recorder);
 
   if (!a.quiet) {
-    std::cout << "# source: " << source->Describe() << "\n# calibration: " << a.calib
-              << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
-              << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx
-              << " cy=" << calib.cy << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
-              << "] m\n";
-    std::istringstream config(odometry_options.ToString());
-    for (std::string line; std::getline(config, line);) std::cout << "# " << line << "\n";
+    PrintConfiguration(std::cout, source->Describe(), a.calib, calib, odometry_options);
     std::cout << std::flush;
   }
   // One thread means one core: OpenCV's own parallel loops too.
@@ -89,8 +83,7 @@ void AddRunCommand(CLI::App& app) {
       "run", "visual odometry over a recorded folder (TUM RGB-D or fakenect layout)");
   cmd->add_option("folder", args->folder, "recording folder")->required();
   cmd->add_option("--calib", args->calib, "calibration YAML (see calib/)")->required();
-  cmd->add_option("--out", args->csv, "trajectory CSV, written frame by frame");
-  cmd->add_option("--tum", args->tum, "trajectory in TUM format (timestamp tx ty tz qx qy qz qw)");
+  args->outputs.AddFlags(cmd);
   cmd->add_option("--depth-scale", args->source.tum.depth_units_per_m, "TUM depth units per metre")
       ->capture_default_str();
   cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")

@@ -1,0 +1,27 @@
+#pragma once
+// What `run` and `capture` share: the trajectory output flags and the configuration header.
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "rgbdvo/calibration.hpp"
+#include "rgbdvo/odometry.hpp"
+#include "rgbdvo/trajectory_writer.hpp"
+
+namespace rgbdvo::cli {
+
+struct TrajectoryOutputs {
+  std::string csv, tum;
+  void AddFlags(CLI::App* cmd);  // --out, --tum
+  // A writer per file given; throws naming a file that cannot be written.
+  std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
+};
+
+// The effective configuration as `# ` lines, so a run can be reproduced.
+void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,
+                        const Calibration& calib, const OdometryOptions& options);
+
+}  // namespace rgbdvo::cli
