@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages rgbdvo needs (only the missing ones), then configures and builds
 # it in ./build. Safe to run again. Usage: scripts/setup.sh [extra cmake args]
+# RGBDVO_EXTRA_PACKAGES (space-separated) adds packages, e.g. for bench/setup_peers.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libopencv-dev libeigen3-dev libfreenect-dev
-          libfreenect-bin libcli11-dev catch2 xvfb xdotool gnuplot-nox python3-numpy)
+          libfreenect-bin libcli11-dev catch2 xvfb xdotool gnuplot-nox python3-numpy
+          ${RGBDVO_EXTRA_PACKAGES:-})
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
