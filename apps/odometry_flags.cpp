@@ -30,6 +30,9 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
       ->check(CLI::IsMember({"default", "paper"}))
       ->capture_default_str();
   using O = OdometryOptions;
+  Add<std::string>(
+      "--sift", [](O& o) -> std::string& { return o.features.implementation; },
+      "SIFT implementation: rgbdvo (own, faster) or opencv (cv::SIFT)");
   Add<int>(
       "--max-features", [](O& o) -> int& { return o.features.max_features; },
       "SIFT: keep the N strongest, 0 = all");
@@ -41,7 +44,7 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
       "SIFT scales per octave");
   Add<bool>(
       "--sift-upsample", [](O& o) -> bool& { return o.features.upsample_first_octave; },
-      "SIFT: 2x-upsampled first octave (OpenCV) or, false, SIFT on the half image");
+      "SIFT: 2x-upsampled first octave (Lowe, OpenCV) or, false, the image's own resolution");
   Add<double>(
       "--ratio", [](O& o) -> double& { return o.matching.ratio; },
       "Lowe ratio test: best < ratio * second best");

@@ -31,12 +31,13 @@ OdometryOptions PresetOptions(const std::string& name) {
   OdometryOptions o;
   if (name == "default") return o;
   if (name == "paper") {
-    o.matching.mutual = false;           // the paper names no matching rule; a plain ratio test
-    o.refine_enabled = false;            // SVD on the inliers only (eq. 5-10)
-    o.keyframe_inlier_ratio = 0;         // successive frames
-    o.ransac.confidence = 0;             // always 200 trials
-    o.undistort = false;                 // "a perfect pinhole model was used"
-    o.lifting.max_depth_jump_ratio = 0;  // depth at the nearest pixel
+    o.features.implementation = "opencv";  // a reference SIFT (the paper names none)
+    o.matching.mutual = false;             // the paper names no matching rule; a plain ratio test
+    o.refine_enabled = false;              // SVD on the inliers only (eq. 5-10)
+    o.keyframe_inlier_ratio = 0;           // successive frames
+    o.ransac.confidence = 0;               // always 200 trials
+    o.undistort = false;                   // "a perfect pinhole model was used"
+    o.lifting.max_depth_jump_ratio = 0;    // depth at the nearest pixel
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
@@ -44,7 +45,8 @@ OdometryOptions PresetOptions(const std::string& name) {
 
 std::string OdometryOptions::ToString() const {
   std::ostringstream s;
-  s << "features.max_features = " << features.max_features << "\n"
+  s << "features.implementation = " << features.implementation << "\n"
+    << "features.max_features = " << features.max_features << "\n"
     << "features.octave_layers = " << features.octave_layers << "\n"
     << "features.contrast_threshold = " << features.contrast_threshold << "\n"
     << "features.edge_threshold = " << features.edge_threshold << "\n"

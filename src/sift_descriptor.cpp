@@ -1,0 +1,215 @@
+#include "rgbdvo/sift_descriptor.hpp"
+
+#include <array>
+#include <cstring>
+#include <vector>
+
+#include "rgbdvo/simd.hpp"
+
+namespace rgbdvo {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+// 8 floats / ints, GCC/Clang vector extension: one AVX register where the CPU has them.
+typedef float v8f __attribute__((vector_size(32)));
+typedef int v8i __attribute__((vector_size(32)));
+constexpr int kWidth = 4;          // spatial bins per side (Lowe: 4)
+constexpr int kBins = 8;           // orientation bins (Lowe: 8)
+constexpr float kBinWidth = 3.0f;  // a spatial bin is 3 sigma wide (OpenCV SIFT_DESCR_SCL_FCTR)
+constexpr float kClip = 0.2f;      // clip normalised entries at 0.2 (Lowe section 6.1)
+constexpr float kToByte = 512.0f;  // scale of the stored entries (OpenCV SIFT_INT_DESCR_FCTR)
+constexpr int kPerBin = 4;         // grid samples per bin and side
+// The grid covers bin coordinates (-1, kWidth): a sample in the outer ring still contributes
+// by interpolation to the edge bins, as every pixel there does in OpenCV.
+constexpr int kGrid = (kWidth + 1) * kPerBin;
+constexpr int kSamples = kGrid * kGrid;
+
+// The fixed sampling grid: where each sample lies (rotated bin units, relative to the
+// keypoint), its Gaussian weight, and the spatial bins it is interpolated into.
+struct Grid {
+  std::array<float, kGrid> offset;  // bin coordinate - (kWidth - 1) / 2, per grid line
+  std::array<float, kSamples> weight;
+  struct Splat {
+    int sample;
+    float weight;  // bilinear weight
+  };
+  // Per spatial bin (row * kWidth + col), the samples interpolated into it.
+  std::array<std::vector<Splat>, kWidth * kWidth> splats;
+};
+
+const Grid& TheGrid() {
+  static const Grid grid = [] {
+    Grid g;
+    int bin0[kGrid];
+    float frac[kGrid];
+    for (int i = 0; i < kGrid; ++i) {
+      const float b = -1.0f + (i + 0.5f) / kPerBin;  // bin centres at 0 .. kWidth - 1
+      g.offset[i] = b - 0.5f * (kWidth - 1);
+      bin0[i] = static_cast<int>(std::floor(b));
+      frac[i] = b - bin0[i];
+    }
+    // Gaussian window of sigma = half the descriptor width (Lowe section 6.1).
+    const float scale = -1.0f / (0.5f * kWidth * kWidth);
+    for (int r = 0; r < kGrid; ++r)
+      for (int c = 0; c < kGrid; ++c) {
+        const int s = r * kGrid + c;
+        g.weight[s] = std::exp((g.offset[r] * g.offset[r] + g.offset[c] * g.offset[c]) * scale);
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b) {
+            const int br = bin0[r] + a, bc = bin0[c] + b;
+            if (br < 0 || br >= kWidth || bc < 0 || bc >= kWidth) continue;
+            const float w = (a ? frac[r] : 1 - frac[r]) * (b ? frac[c] : 1 - frac[c]);
+            if (w > 0) g.splats[br * kWidth + bc].push_back({s, w});
+          }
+      }
+    return g;
+  }();
+  return grid;
+}
+
+}  // namespace
+
+RGBDVO_SIMD_CLONES float OrientationHistogram(const cv::Mat& level, int x, int y, int radius,
+                                              float sigma, float hist[36]) {
+  constexpr int n = 36;
+  constexpr int kMaxRadius = 64;
+  radius = std::min(radius, kMaxRadius);
+  float raw[n + 4] = {};  // two wrap-around entries on each side for the smoothing
+  float* h = raw + 2;
+  // exp(-(i^2 + j^2) / (2 sigma^2)) = w[i] * w[j].
+  float w[2 * kMaxRadius + 1];
+  const float scale = -1.0f / (2.0f * sigma * sigma);
+  for (int i = -radius; i <= radius; ++i) w[i + radius] = std::exp(i * i * scale);
+  float mag[2 * kMaxRadius + 1], bin[2 * kMaxRadius + 1];
+  const float to_bin = n / (2 * kPi);
+  const size_t step = level.step1();
+  for (int i = -radius; i <= radius; ++i) {
+    const int yy = y + i;
+    if (yy <= 0 || yy >= level.rows - 1) continue;
+    const int j0 = std::max(-radius, 1 - x), j1 = std::min(radius, level.cols - 2 - x);
+    const int len = j1 - j0 + 1;
+    const float* row = level.ptr<float>(yy) + x + j0;
+    const float* wj = w + j0 + radius;
+    const float wi = w[i + radius];
+    // Gradients of the row's samples, vectorisable; then the histogram, scalar.
+    for (int j = 0; j < len; ++j) {
+      const float dx = row[j + 1] - row[j - 1], dy = row[j - step] - row[j + step];
+      mag[j] = wi * wj[j] * std::sqrt(dx * dx + dy * dy);
+      bin[j] = FastAtan2(dy, dx) * to_bin + 0.5f;
+    }
+    for (int j = 0; j < len; ++j) {
+      int b = static_cast<int>(bin[j]);
+      b = b >= n ? b - n : b;
+      h[b] += mag[j];
+    }
+  }
+  h[-1] = h[n - 1];
+  h[-2] = h[n - 2];
+  h[n] = h[0];
+  h[n + 1] = h[1];
+  float best = 0;
+  for (int i = 0; i < n; ++i) {
+    hist[i] = (h[i - 2] + h[i + 2]) * (1.0f / 16) + (h[i - 1] + h[i + 1]) * (4.0f / 16) +
+              h[i] * (6.0f / 16);
+    best = std::max(best, hist[i]);
+  }
+  return best;
+}
+
+RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, float sigma,
+                                       float angle_deg, float* out) {
+  // The window is centred on the pixel nearest the keypoint, as OpenCV centres it (measured:
+  // centring it on the sub-pixel position made the odometry less accurate on fr1/xyz, 5-seed
+  // mean RPE 0.0211 against 0.0197 m/s).
+  x = std::round(x);
+  y = std::round(y);
+  const Grid& grid = TheGrid();
+  // OpenCV's descriptor angle: 360 - KeyPoint::angle, the gradient angle with y up.
+  const float angle = (360.0f - angle_deg) * (kPi / 180.0f);
+  const float bin_px = kBinWidth * sigma;
+  const float cos_a = std::cos(angle) * bin_px, sin_a = std::sin(angle) * bin_px;
+  const float* data = level.ptr<float>(0);
+  const int step = static_cast<int>(level.step1()), cols = level.cols, rows = level.rows;
+
+  // 1. The gradient at every grid sample: central differences at the 4 pixels around it,
+  //    interpolated bilinearly; 0 where the sample is too close to the image edge.
+  float dx[kSamples], dy[kSamples];
+  for (int gr = 0; gr < kGrid; ++gr) {
+    const float r = grid.offset[gr];
+    // Branch-free over a grid row (so that it vectorises): samples too close to the edge are
+    // read at a clamped position and zeroed.
+    for (int gc = 0; gc < kGrid; ++gc) {
+      const float c = grid.offset[gc];
+      // Rotated bin units -> image pixels (the inverse of OpenCV's rotation of pixel offsets).
+      const float px = x + cos_a * c + sin_a * r, py = y - sin_a * c + cos_a * r;
+      const float fpx = std::floor(px), fpy = std::floor(py);
+      const bool inside = fpx >= 1 && fpy >= 1 && fpx + 2 < cols && fpy + 2 < rows;
+      const int x0 = inside ? static_cast<int>(fpx) : 1, y0 = inside ? static_cast<int>(fpy) : 1;
+      const float fx = px - fpx, fy = py - fpy;
+      const int i0 = y0 * step + x0;  // rows y0 - 1 .. y0 + 2 around column x0
+      const int i1 = i0 + step, im = i0 - step, i2 = i1 + step;
+      const float gx00 = data[i0 + 1] - data[i0 - 1], gx01 = data[i0 + 2] - data[i0];
+      const float gx10 = data[i1 + 1] - data[i1 - 1], gx11 = data[i1 + 2] - data[i1];
+      const float gy00 = data[im] - data[i1], gy01 = data[im + 1] - data[i1 + 1];
+      const float gy10 = data[i0] - data[i2], gy11 = data[i0 + 1] - data[i2 + 1];
+      const float gx0 = gx00 + fx * (gx01 - gx00), gx1 = gx10 + fx * (gx11 - gx10);
+      const float gy0 = gy00 + fx * (gy01 - gy00), gy1 = gy10 + fx * (gy11 - gy10);
+      const int s = gr * kGrid + gc;
+      dx[s] = inside ? gx0 + fy * (gx1 - gx0) : 0.0f;
+      dy[s] = inside ? gy0 + fy * (gy1 - gy0) : 0.0f;
+    }
+  }
+  // 2. Weighted magnitude and orientation bin relative to the keypoint's (vectorisable).
+  float mag[kSamples], obin[kSamples];
+  const float to_bin = kBins / (2 * kPi);
+  for (int s = 0; s < kSamples; ++s) {
+    mag[s] = grid.weight[s] * std::sqrt(dx[s] * dx[s] + dy[s] * dy[s]);
+    float o = (FastAtan2(dy[s], dx[s]) - angle) * to_bin;
+    o = o < 0 ? o + kBins : o;
+    obin[s] = o >= kBins ? o - kBins : o;
+  }
+  // 3. Trilinear interpolation into 4 x 4 spatial x 8 orientation bins: each sample's magnitude
+  //    split between its two orientation bins as an 8-vector, added into its spatial bins.
+  float split[kSamples][kBins];
+  const v8i lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  for (int s = 0; s < kSamples; ++s) {
+    const int o0 = std::min(static_cast<int>(obin[s]), kBins - 1);
+    const float m1 = mag[s] * (obin[s] - o0), m0 = mag[s] - m1;
+    // Lane o0 gets m0, lane o0 + 1 (mod 8) gets m1, the others 0.
+    const v8i in0 = lane == o0, in1 = lane == ((o0 + 1) & (kBins - 1));
+    const v8f v = (v8f)(in0 & (v8i)(v8f{} + m0)) + (v8f)(in1 & (v8i)(v8f{} + m1));
+    std::memcpy(split[s], &v, sizeof v);
+  }
+  float hist[kWidth * kWidth * kBins];
+  for (int b = 0; b < kWidth * kWidth; ++b) {
+    // Two running sums (even and odd samples) halve the chain of dependent additions.
+    float even[kBins] = {}, odd[kBins] = {};
+    const std::vector<Grid::Splat>& list = grid.splats[b];
+    const size_t n = list.size();
+    for (size_t i = 0; i < n; i += 2) {
+      const float we = list[i].weight, wo = i + 1 < n ? list[i + 1].weight : 0.0f;
+      const float* e = split[list[i].sample];
+      const float* o = split[list[i + 1 < n ? i + 1 : i].sample];
+      for (int k = 0; k < kBins; ++k) {
+        even[k] += we * e[k];
+        odd[k] += wo * o[k];
+      }
+    }
+    for (int k = 0; k < kBins; ++k) hist[b * kBins + k] = even[k] + odd[k];
+  }
+
+  // Normalise, clip large gradients, renormalise (Lowe section 6.1); stored as 0..255.
+  float norm = 0;
+  for (float v : hist) norm += v * v;
+  const float clip = kClip * std::sqrt(norm);
+  norm = 0;
+  for (float& v : hist) {
+    v = std::min(v, clip);
+    norm += v * v;
+  }
+  const float scale = kToByte / std::max(std::sqrt(norm), 1e-7f);
+  for (int k = 0; k < kSiftDescriptorSize; ++k)
+    out[k] = std::min(255.0f, std::floor(hist[k] * scale + 0.5f));
+}
+
+}  // namespace rgbdvo
