@@ -14,9 +14,11 @@ struct ScaleSpaceOptions {
   // true: the first octave has twice the image's resolution (Lowe's "double the image", the
   // octave -1 of OpenCV's SIFT); false: it has the image's own resolution.
   bool upsample = true;
-  // Gaussian kernels are cut at this many sigmas (OpenCV's SIFT: 4; the weight beyond 3 sigma
-  // is 0.27%).
-  double kernel_sigmas = 4.0;
+  // Gaussian kernels are cut at this many sigmas (OpenCV's SIFT: 4). The weight beyond 3 sigma
+  // is 0.27%, a quarter of the work: measured with 5 RANSAC seeds, 3 was as accurate as 4 (mean
+  // ATE / RPE fr1_xyz 0.0114 / 0.0181 against 0.0121 / 0.0197, fr3_teddy 0.0108 / 0.0125
+  // against 0.0128 / 0.0129).
+  double kernel_sigmas = 3.0;
   void Check() const;
 };
 
