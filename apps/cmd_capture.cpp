@@ -59,7 +59,8 @@ int Capture(CaptureArgs& a) {
 
   KinectSource source(a.kinect);
   if (!a.quiet) {
-    PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options);
+    PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options,
+                       RunOptions{});
     std::cout << "# Ctrl-C stops cleanly" << std::endl;
   }
   Odometry odometry(odometry_options, calib);
