@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "commands.hpp"
 #include "rgbdvo/calibration.hpp"
@@ -29,6 +31,7 @@ struct CaptureArgs {
   std::string calib;
   TrajectoryOutputs outputs;
   bool quiet = false, no_drop = false, no_accel = false;
+  int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
   KinectSourceOptions kinect;
   RunOptions run;
   std::unique_ptr<OdometryFlags> odometry_flags;
@@ -80,6 +83,8 @@ int Capture(CaptureArgs& a) {
     }
     if (progress)
       std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
+    if (a.frame_delay_ms > 0)
+      std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
   };
   const RunSummary summary = RunOdometry(source, odometry, writer_ptrs, on_frame, a.run);
   if (progress) std::cerr << "\n";
@@ -121,6 +126,10 @@ void AddCaptureCommand(CLI::App& app) {
                 "wait for the odometry instead of dropping frames (for fakenect replays)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
   AddThreadsFlag(cmd, &args->run);
+  cmd->add_option("--debug-frame-delay-ms", args->frame_delay_ms,
+                  "for tests: sleep this long after each frame, as an odometry that much slower")
+      ->check(CLI::NonNegativeNumber)
+      ->group("");  // hidden from --help
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Capture(*args);
