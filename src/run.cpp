@@ -21,7 +21,8 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// A frame with its features, or the end of the source, or the source's exception.
+// A frame with its features, or the end of the source, or the exception that stopped it (from
+// the source or the feature extraction).
 struct Decoded {
   std::optional<Frame> frame;
   Features features;
@@ -59,16 +60,14 @@ class FeatureWorkers {
   FeatureWorkers(FrameSource& source, const FeatureOptions& features, int workers, int capacity)
       : source_(source), capacity_(capacity) {
     for (int i = 0; i < workers; ++i) extractors_.emplace_back(features);
-    for (const SiftExtractor& e : extractors_) threads_.emplace_back([this, &e] { Work(e); });
-  }
-  ~FeatureWorkers() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
+    try {
+      for (const SiftExtractor& e : extractors_) threads_.emplace_back([this, &e] { Work(e); });
+    } catch (...) {  // no thread for the next worker: stop those started
+      Stop();
+      throw;
     }
-    room_.notify_all();
-    for (std::thread& t : threads_) t.join();
   }
+  ~FeatureWorkers() { Stop(); }
   FeatureWorkers(const FeatureWorkers&) = delete;
   FeatureWorkers& operator=(const FeatureWorkers&) = delete;
 
@@ -89,6 +88,15 @@ class FeatureWorkers {
   }
 
  private:
+  void Stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    room_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+
   void Work(const SiftExtractor& extractor) {
     for (;;) {
       std::unique_lock<std::mutex> source_lock(source_mutex_);
