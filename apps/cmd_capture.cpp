@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "commands.hpp"
 #include "rgbdvo/calibration.hpp"
@@ -29,7 +31,9 @@ struct CaptureArgs {
   std::string calib;
   TrajectoryOutputs outputs;
   bool quiet = false, no_drop = false, no_accel = false;
+  int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
   KinectSourceOptions kinect;
+  RunOptions run;
   std::unique_ptr<OdometryFlags> odometry_flags;
 };
 
@@ -42,6 +46,9 @@ int Capture(CaptureArgs& a) {
   a.kinect.record_accel = !a.no_accel;
   a.kinect.stop = &g_stop;
   a.kinect.Check();
+  // Read no further ahead than the workers need: a backlog then waits in the source's queue,
+  // where the oldest pair is dropped and counted (the newest frame wins).
+  a.run.queue_frames = 1;
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
@@ -59,13 +66,14 @@ int Capture(CaptureArgs& a) {
 
   KinectSource source(a.kinect);
   if (!a.quiet) {
-    PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options);
+    PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options, a.run);
     std::cout << "# Ctrl-C stops cleanly" << std::endl;
   }
+  LimitOpenCvThreads(a.run);
   Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
   int warned_at = 0;
-  const RunSummary summary = RunOdometry(source, odometry, writer_ptrs, [&](const FrameResult& r) {
+  const auto on_frame = [&](const FrameResult& r) {
     const int dropped = source.stats().dropped;
     if (dropped > 0 && (warned_at == 0 || dropped >= warned_at + 30)) {
       std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: the odometry is slower than the "
@@ -75,7 +83,10 @@ int Capture(CaptureArgs& a) {
     }
     if (progress)
       std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
-  });
+    if (a.frame_delay_ms > 0)
+      std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
+  };
+  const RunSummary summary = RunOdometry(source, odometry, writer_ptrs, on_frame, a.run);
   if (progress) std::cerr << "\n";
   const CaptureStats stats = source.stats();
   std::cout << summary.Brief() << "; " << stats.Brief() << std::endl;
@@ -114,6 +125,11 @@ void AddCaptureCommand(CLI::App& app) {
   cmd->add_flag("--no-drop", args->no_drop,
                 "wait for the odometry instead of dropping frames (for fakenect replays)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
+  AddThreadsFlag(cmd, &args->run);
+  cmd->add_option("--debug-frame-delay-ms", args->frame_delay_ms,
+                  "for tests: sleep this long after each frame, as an odometry that much slower")
+      ->check(CLI::NonNegativeNumber)
+      ->group("");  // hidden from --help
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Capture(*args);

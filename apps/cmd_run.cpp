@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <opencv2/core/utility.hpp>
 
 #include "commands.hpp"
 #include "rgbdvo/calibration.hpp"
@@ -47,11 +46,10 @@ int Run(const RunArgs& a) {
   if (!a.plot.empty()) writer_ptrs.push_back(&recorder);
 
   if (!a.quiet) {
-    PrintConfiguration(std::cout, source->Describe(), a.calib, calib, odometry_options);
+    PrintConfiguration(std::cout, source->Describe(), a.calib, calib, odometry_options, a.run);
     std::cout << std::flush;
   }
-  // One thread means one core: OpenCV's own parallel loops too.
-  if (a.run.EffectiveThreads() == 1) cv::setNumThreads(1);
+  LimitOpenCvThreads(a.run);
   Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
   const RunSummary summary = RunOdometry(
@@ -90,11 +88,7 @@ void AddRunCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--plot", args->plot, "PNG of the path after the run (with ground truth if any)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
-  cmd->add_option("--threads", args->run.threads,
-                  "1 = one core; 2 = decode+features of the next frame on a second thread "
-                  "(same results); 0 = hardware concurrency capped at 2")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  AddThreadsFlag(cmd, &args->run);
   cmd->add_flag("--timing", args->timing, "also print milliseconds per frame for each stage");
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {

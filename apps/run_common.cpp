@@ -1,5 +1,6 @@
 #include "run_common.hpp"
 
+#include <opencv2/core/utility.hpp>
 #include <sstream>
 
 namespace rgbdvo::cli {
@@ -16,12 +17,28 @@ std::vector<std::unique_ptr<TrajectoryWriter>> TrajectoryOutputs::Open() const {
   return writers;
 }
 
+void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {
+  cmd->add_option("--threads", options->threads,
+                  "1 = everything on one core (OpenCV's loops too); N >= 2 = N feature workers "
+                  "(decode + SIFT) while the main thread matches, estimates and writes in frame "
+                  "order (same results); 0 = automatic: the hardware concurrency, at most " +
+                      std::to_string(RunOptions::kMaxAutoThreads))
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+
+void LimitOpenCvThreads(const RunOptions& options) {
+  if (options.EffectiveThreads() == 1) cv::setNumThreads(1);
+}
+
 void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,
-                        const Calibration& calib, const OdometryOptions& options) {
+                        const Calibration& calib, const OdometryOptions& options,
+                        const RunOptions& run) {
   out << "# source: " << source << "\n# calibration: " << calib_path << " A=" << calib.A
       << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D << " fx=" << calib.fx
       << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy << " depth=["
-      << calib.min_depth_m << "," << calib.max_depth_m << "] m\n";
+      << calib.min_depth_m << "," << calib.max_depth_m << "] m\n# threads: " << run.Describe()
+      << "\n";
   std::istringstream config(options.ToString());
   for (std::string line; std::getline(config, line);) out << "# " << line << "\n";
 }

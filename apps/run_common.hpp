@@ -1,5 +1,6 @@
 #pragma once
-// What `run` and `capture` share: the trajectory output flags and the configuration header.
+// What `run` and `capture` share: the trajectory output flags, --threads and the configuration
+// header.
 
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -9,6 +10,7 @@
 
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/odometry.hpp"
+#include "rgbdvo/run.hpp"
 #include "rgbdvo/trajectory_writer.hpp"
 
 namespace rgbdvo::cli {
@@ -20,8 +22,14 @@ struct TrajectoryOutputs {
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
 };
 
+// --threads into options->threads.
+void AddThreadsFlag(CLI::App* cmd, RunOptions* options);
+// Limits OpenCV's own parallel loops to suit `options`: one thread means one core.
+void LimitOpenCvThreads(const RunOptions& options);
+
 // The effective configuration as `# ` lines, so a run can be reproduced.
 void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,
-                        const Calibration& calib, const OdometryOptions& options);
+                        const Calibration& calib, const OdometryOptions& options,
+                        const RunOptions& run);
 
 }  // namespace rgbdvo::cli

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
 #include <exception>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
-
-#include "rgbdvo/bounded_queue.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -18,7 +21,8 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// A frame with its features, or the end of the source, or the source's exception.
+// A frame with its features, or the end of the source, or the exception that stopped it (from
+// the source or the feature extraction).
 struct Decoded {
   std::optional<Frame> frame;
   Features features;
@@ -44,33 +48,107 @@ Decoded DecodeNext(FrameSource& source, const SiftExtractor& extractor) {
   return d;
 }
 
-// Decodes and extracts on its own thread into a bounded queue; stops and joins when destroyed
-// (also when the consumer throws).
-class Prefetcher {
+// W feature workers feeding the calling thread in sequence order. Each worker takes the next
+// frame from the source under `source_mutex_` (decoding is serial, so frames get consecutive
+// sequence numbers in source order), extracts its features with its own extractor (so
+// SiftExtractor::Extract need not be thread-safe) and files the result under its sequence
+// number; Next() hands them out strictly in order. At most `capacity` frames are read ahead of
+// the consumer. After the end of the source or an error no more frames are read; the
+// destructor stops and joins the workers (also when the consumer throws).
+class FeatureWorkers {
  public:
-  Prefetcher(FrameSource& source, const SiftExtractor& extractor, int capacity)
-      : queue_(static_cast<size_t>(capacity)), thread_([this, &source, &extractor] {
-          for (;;) {
-            Decoded d = DecodeNext(source, extractor);
-            const bool last = !d.frame || d.error;
-            // Waits for room; false once the consumer has closed the queue (then d is dropped).
-            if (!queue_.PushWait(std::move(d), kForever) || last) return;
-          }
-        }) {}
-  ~Prefetcher() {
-    queue_.Close();
-    thread_.join();
+  FeatureWorkers(FrameSource& source, const FeatureOptions& features, int workers, int capacity)
+      : source_(source), capacity_(capacity) {
+    for (int i = 0; i < workers; ++i) extractors_.emplace_back(features);
+    try {
+      for (const SiftExtractor& e : extractors_) threads_.emplace_back([this, &e] { Work(e); });
+    } catch (...) {  // no thread for the next worker: stop those started
+      Stop();
+      throw;
+    }
   }
-  Decoded Next() {
-    std::optional<Decoded> d = queue_.Pop(kForever);  // the producer always ends with an item
-    if (!d) throw std::logic_error("prefetch queue closed while the run was reading it");
-    return std::move(*d);
+  ~FeatureWorkers() { Stop(); }
+  FeatureWorkers(const FeatureWorkers&) = delete;
+  FeatureWorkers& operator=(const FeatureWorkers&) = delete;
+
+  // The next frame in sequence (or the end, or the error where the source failed); waits.
+  // `waited` gets the seconds spent waiting.
+  Decoded Next(double* waited) {
+    const Clock::time_point t0 = Clock::now();
+    std::unique_lock<std::mutex> lock(mutex_);
+    ready_.wait(lock, [&] { return done_.count(consumed_) > 0; });
+    *waited = Since(t0);
+    auto it = done_.find(consumed_);
+    Decoded d = std::move(it->second);
+    done_.erase(it);
+    ++consumed_;
+    lock.unlock();
+    room_.notify_all();
+    return d;
   }
 
  private:
-  static constexpr std::chrono::hours kForever{24 * 365};
-  BoundedQueue<Decoded> queue_;
-  std::thread thread_;
+  void Stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    room_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+
+  void Work(const SiftExtractor& extractor) {
+    for (;;) {
+      std::unique_lock<std::mutex> source_lock(source_mutex_);
+      int64_t seq;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        room_.wait(lock, [&] { return stop_ || ended_ || read_ - consumed_ < capacity_; });
+        if (stop_ || ended_) return;
+        seq = read_++;
+      }
+      Decoded d;
+      try {
+        const Clock::time_point t0 = Clock::now();
+        d.frame = source_.Next();
+        d.decode_seconds = Since(t0);
+      } catch (...) {
+        d.error = std::current_exception();
+      }
+      if (!d.frame) {  // the end or an error: nothing after it is read
+        std::lock_guard<std::mutex> lock(mutex_);
+        ended_ = true;
+      }
+      source_lock.unlock();
+      if (d.frame) {
+        try {
+          const Clock::time_point t0 = Clock::now();
+          d.features = extractor.Extract(d.frame->bgr);
+          d.feature_seconds = Since(t0);
+        } catch (...) {
+          d.error = std::current_exception();
+        }
+      }
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_.emplace(seq, std::move(d));
+      }
+      ready_.notify_one();  // only the calling thread waits on ready_
+    }
+  }
+
+  FrameSource& source_;
+  const int64_t capacity_;
+  std::deque<SiftExtractor> extractors_;  // one per worker; a deque never moves them
+  std::mutex source_mutex_;               // serialises source_.Next()
+  std::mutex mutex_;                      // guards everything below
+  std::condition_variable ready_, room_;
+  std::map<int64_t, Decoded> done_;  // reorder buffer: finished frames by sequence number
+  int64_t read_ = 0;                 // frames taken from the source
+  int64_t consumed_ = 0;             // frames handed to the calling thread
+  bool ended_ = false;               // the source ended or failed
+  bool stop_ = false;
+  std::vector<std::thread> threads_;
 };
 
 }  // namespace
@@ -81,9 +159,21 @@ void RunOptions::Check() const {
 }
 
 int RunOptions::EffectiveThreads() const {
-  if (threads > 0) return std::min(threads, 2);
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw >= 2 ? 2 : 1;
+  if (threads > 0) return threads;
+  const int hw = static_cast<int>(std::thread::hardware_concurrency());
+  return std::clamp(hw, 1, kMaxAutoThreads);
+}
+
+int RunOptions::EffectiveQueueFrames() const {
+  const int workers = EffectiveThreads();
+  return workers > 1 ? std::max(queue_frames, workers) : 0;
+}
+
+std::string RunOptions::Describe() const {
+  const int n = EffectiveThreads();
+  if (n == 1) return "1 thread";
+  return std::to_string(n) + " feature workers + the main thread, at most " +
+         std::to_string(EffectiveQueueFrames()) + " frames read ahead";
 }
 
 std::string RunSummary::Brief() const {
@@ -103,7 +193,8 @@ std::string RunSummary::Timing() const {
   s << "ms/frame: decode " << decode_seconds * ms << ", features " << stage_seconds.features * ms
     << ", matching " << stage_seconds.matching * ms << ", lifting " << stage_seconds.lifting * ms
     << ", ransac+refine " << stage_seconds.ransac * ms << ", writing " << write_seconds * ms
-    << ", wall " << seconds * ms << " (" << threads << " thread" << (threads > 1 ? "s" : "") << ")";
+    << ", waiting " << wait_seconds * ms << ", wall " << seconds * ms << " ("
+    << (threads > 1 ? std::to_string(threads) + " feature workers" : "1 thread") << ")";
   return s.str();
 }
 
@@ -116,10 +207,14 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   summary.threads = options.EffectiveThreads();
   const Clock::time_point start = Clock::now();
   double inlier_sum = 0;
-  std::optional<Prefetcher> prefetcher;
-  if (summary.threads > 1) prefetcher.emplace(source, odometry.extractor(), options.queue_frames);
+  std::optional<FeatureWorkers> workers;
+  if (summary.threads > 1)
+    workers.emplace(source, odometry.options().features, summary.threads,
+                    options.EffectiveQueueFrames());
   for (;;) {
-    Decoded d = prefetcher ? prefetcher->Next() : DecodeNext(source, odometry.extractor());
+    double waited = 0;
+    Decoded d = workers ? workers->Next(&waited) : DecodeNext(source, odometry.extractor());
+    summary.wait_seconds += waited;
     if (d.error) std::rethrow_exception(d.error);
     summary.decode_seconds += d.decode_seconds;
     if (!d.frame) break;

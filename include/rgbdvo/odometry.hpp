@@ -80,6 +80,7 @@ class Odometry {
   // With features already extracted from frame.bgr (e.g. on another thread).
   FrameResult Process(const Frame& frame, Features features);
   const SiftExtractor& extractor() const { return extractor_; }
+  const OdometryOptions& options() const { return options_; }
 
  private:
   struct Reference {

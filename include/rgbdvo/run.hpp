@@ -12,14 +12,25 @@
 namespace rgbdvo {
 
 struct RunOptions {
-  // 1 = decode, features and odometry in turn on the calling thread. 2 = a two-stage pipeline:
-  // a second thread decodes frame k+1 and extracts its features while the calling thread
-  // matches, estimates and writes frame k (identical results, same order). 0 = the hardware
-  // concurrency capped at 2.
+  // 1 = decode, features and odometry in turn on the calling thread. N >= 2 = N feature
+  // workers: each takes the next frame from the source (one at a time, so frames keep their
+  // order), decodes it and extracts its features; the calling thread takes the frames strictly
+  // in order, matches, estimates and writes. Results are identical for every value. 0 =
+  // automatic: the hardware concurrency, at least 1 and at most kMaxAutoThreads.
   int threads = 0;
-  int queue_frames = 2;  // frames decoded ahead of the odometry at most (bounds memory), >= 1
+  // Frames read from the source ahead of the odometry at most (decoding, extracting or waiting
+  // their turn), raised to the number of workers when smaller; bounds memory. With a live
+  // source keep it small: a backlog should wait in the source's queue, where the newest frame
+  // wins (rgbdvo capture uses the number of workers).
+  int queue_frames = 4;
+  static constexpr int kMaxAutoThreads = 4;  // more workers gain nothing: decoding is serial
   void Check() const;
   int EffectiveThreads() const;  // threads, with 0 resolved
+  // Frames read ahead at most with `EffectiveThreads()` (0 with one thread).
+  int EffectiveQueueFrames() const;
+  // One line, as resolved: "1 thread" or "2 feature workers + the main thread, at most 4
+  // frames read ahead".
+  std::string Describe() const;
 };
 
 struct RunSummary {
@@ -29,10 +40,13 @@ struct RunSummary {
   double mean_inliers = 0;  // over frames after the first
   double seconds = 0;       // wall time, decoding and writing included
   int threads = 1;          // as run
-  // Seconds summed over frames, each measured on the thread doing it (with 2 threads decoding
+  // Seconds summed over frames, each measured on the thread doing it (with workers, decoding
   // and features overlap the other stages, so the sum can exceed `seconds`).
   StageTimes stage_seconds;
   double decode_seconds = 0, write_seconds = 0;
+  // Time the calling thread waited for the next frame's features (0 with one thread): near
+  // `seconds` when the workers are the bottleneck, near 0 when the odometry is.
+  double wait_seconds = 0;
   std::string Brief() const;   // one line: frames, accepted, rejected, mean inliers, fps
   std::string Timing() const;  // one line: milliseconds per frame for each stage
 };
