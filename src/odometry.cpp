@@ -103,16 +103,16 @@ FrameResult Odometry::Process(const Frame& frame) {
   return r;
 }
 
-RansacResult Odometry::Estimate(const Reference& ref, const Features& cur, const cv::Mat& depth_m,
-                                FrameResult* r, std::string* reason) {
+RansacResult Odometry::Estimate(const Reference& ref, const Reference& cur, FrameResult* r,
+                                std::string* reason) {
   auto t0 = std::chrono::steady_clock::now();
-  const std::vector<cv::DMatch> matches = MatchFeatures(options_.matching, ref.features, cur);
+  const std::vector<cv::DMatch> matches =
+      MatchFeatures(options_.matching, ref.features, cur.features);
   r->times.matching += Since(t0);
   r->matches = static_cast<int>(matches.size());
 
   t0 = std::chrono::steady_clock::now();
-  const std::vector<PointPair> pairs =
-      LiftMatches(calib_, options_.lifting, ref.depth_m, depth_m, ref.features, cur, matches);
+  const std::vector<PointPair> pairs = PairMatches(ref.points, cur.points, matches);
   r->times.lifting += Since(t0);
   r->pairs = static_cast<int>(pairs.size());
 
@@ -144,7 +144,12 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   r.frame = frame.index;
   r.timestamp = frame.timestamp;
   r.features = static_cast<int>(features.size());
-  Reference cur{std::move(features), frame.depth_m, Rigid3d::Identity(), frame.index, -1};
+  const auto t0 = std::chrono::steady_clock::now();
+  Reference cur;
+  cur.points = LiftKeypoints(calib_, options_.lifting, frame.depth_m, features);
+  cur.features = std::move(features);
+  cur.frame = frame.index;
+  r.times.lifting += Since(t0);
 
   if (!started_) {
     started_ = true;
@@ -153,11 +158,11 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     return r;
   }
 
-  RansacResult motion = Estimate(key_, cur.features, cur.depth_m, &r, &r.reason);
+  RansacResult motion = Estimate(key_, cur, &r, &r.reason);
   if (!r.reason.empty() && last_.frame != key_.frame) {
     // The keyframe is out of reach: try the last accepted frame, which then becomes the keyframe.
     std::string reason;
-    RansacResult fallback = Estimate(last_, cur.features, cur.depth_m, &r, &reason);
+    RansacResult fallback = Estimate(last_, cur, &r, &reason);
     if (reason.empty()) {
       key_ = last_;
       motion = std::move(fallback);

@@ -84,14 +84,14 @@ class Odometry {
  private:
   struct Reference {
     Features features;
-    cv::Mat depth_m;
+    KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once
     Rigid3d world_from_cam = Rigid3d::Identity();
     int frame = -1;
     int first_inliers = -1;  // inliers of the first frame matched against it
   };
   // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts.
-  RansacResult Estimate(const Reference& ref, const Features& cur, const cv::Mat& depth_m,
-                        FrameResult* r, std::string* reason);
+  RansacResult Estimate(const Reference& ref, const Reference& cur, FrameResult* r,
+                        std::string* reason);
 
   OdometryOptions options_;
   Calibration calib_;
