@@ -1,6 +1,9 @@
 #include "rgbdvo/run.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
 #include <stdexcept>
 
 #include "rgbdvo/synthetic.hpp"
@@ -117,4 +120,25 @@ TEST_CASE("RunOptions::Check names the field") {
   o.queue_frames = 0;
   CHECK_THROWS_WITH(o.Check(), Catch::Contains("queue_frames"));
   CHECK(RunOptions{}.EffectiveThreads() >= 1);
+}
+
+TEST_CASE("ErrorHistogram quantiles are within one bin of the exact ones") {
+  ErrorHistogram h;
+  CHECK(h.Quantile(0.5) == 0);
+  std::vector<double> values;
+  std::mt19937 rng(11);
+  std::exponential_distribution<double> e(0.3);  // mean 3.3 px, a tail beyond 100 px is rare
+  for (int k = 0; k < 5000; ++k) values.push_back(e(rng));
+  values.push_back(250.0);  // beyond the last bin
+  for (double v : values) h.Add(v);
+  std::sort(values.begin(), values.end());
+  CHECK(h.n == static_cast<int64_t>(values.size()));
+  CHECK(h.max == 250.0);
+  for (double q : {0.5, 0.9, 0.99}) {
+    const double exact = values[static_cast<size_t>(std::ceil(q * values.size())) - 1];
+    INFO("q " << q << " exact " << exact << " histogram " << h.Quantile(q));
+    CHECK(h.Quantile(q) >= exact);
+    CHECK(h.Quantile(q) <= exact + ErrorHistogram::kBin + 1e-9);
+  }
+  CHECK(h.Quantile(1.0) == 250.0);
 }
