@@ -61,7 +61,7 @@ int Run(const RunArgs& a) {
       a.run);
   if (progress) std::cerr << "\n";
   std::cout << summary.Brief() << std::endl;
-  if (a.timing) std::cout << summary.Timing() << std::endl;
+  if (a.timing) std::cout << summary.Timing() << "\n" << summary.Matching() << std::endl;
   if (!a.plot.empty()) {  // with the folder's groundtruth.txt when it has one
     const std::string gt_path = (std::filesystem::path(a.folder) / "groundtruth.txt").string();
     std::vector<StampedPose> gt;

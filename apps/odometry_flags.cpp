@@ -55,6 +55,9 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
       "--mutual", [](O& o) -> bool& { return o.matching.mutual; }, true,
       "require mutual nearest neighbours (default; not in --preset paper)");
   Add<double>(
+      "--guided-radius", [](O& o) -> double& { return o.guided_radius_px; },
+      "guided matching: search radius around the motion prior's prediction, px (0 = brute force)");
+  Add<double>(
       "--depth-jump", [](O& o) -> double& { return o.lifting.max_depth_jump_ratio; },
       "bilinear depth, refused across jumps above this fraction (0 = nearest pixel)");
   Add<int>(

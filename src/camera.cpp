@@ -8,6 +8,10 @@ Eigen::Vector2d ColorToIr(const Calibration& c, const Eigen::Vector2d& uv) {
   return {c.A * uv.x() + c.B, c.C * uv.y() + c.D};
 }
 
+Eigen::Vector2d IrToColor(const Calibration& c, const Eigen::Vector2d& uv_ir) {
+  return {(uv_ir.x() - c.B) / c.A, (uv_ir.y() - c.D) / c.C};
+}
+
 namespace {
 
 bool HasDistortion(const Calibration& c) {

@@ -37,6 +37,7 @@ SiftExtractor::SiftExtractor(const FeatureOptions& o) : options_(o) {
 }
 
 Features SiftExtractor::Extract(const cv::Mat& image) const {
+  if (image.empty()) throw std::invalid_argument("SIFT: empty image");
   cv::Mat gray;
   if (image.channels() == 3)
     cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);

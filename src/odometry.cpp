@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/motion_prior.hpp"
 #include "rgbdvo/point_pairs.hpp"
 
 namespace rgbdvo {
@@ -24,6 +25,7 @@ void OdometryOptions::Check() const {
   refine.Check();
   if (!(keyframe_inlier_ratio >= 0 && keyframe_inlier_ratio <= 1))
     throw std::invalid_argument("keyframe_inlier_ratio must be in [0, 1]");
+  if (!(guided_radius_px >= 0)) throw std::invalid_argument("guided_radius_px must be >= 0");
   if (max_rejected_run < 0) throw std::invalid_argument("max_rejected_run must be >= 0");
 }
 
@@ -38,6 +40,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.ransac.confidence = 0;               // always 200 trials
     o.undistort = false;                   // "a perfect pinhole model was used"
     o.lifting.max_depth_jump_ratio = 0;    // depth at the nearest pixel
+    o.guided_radius_px = 0;                // brute-force matching
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
@@ -55,6 +58,7 @@ std::string OdometryOptions::ToString() const {
     << "\n"
     << "matching.ratio = " << matching.ratio << "\n"
     << "matching.mutual = " << (matching.mutual ? "true" : "false") << "\n"
+    << "matching.guided_radius_px = " << guided_radius_px << "\n"
     << "lifting.max_depth_jump_ratio = " << lifting.max_depth_jump_ratio << "\n"
     << "ransac.max_trials = " << ransac.max_trials << "\n"
     << "ransac.sample_size = " << ransac.sample_size << "\n"
@@ -105,16 +109,12 @@ FrameResult Odometry::Process(const Frame& frame) {
   return r;
 }
 
-RansacResult Odometry::Estimate(const Reference& ref, const Features& cur, const cv::Mat& depth_m,
-                                FrameResult* r, std::string* reason) {
-  auto t0 = std::chrono::steady_clock::now();
-  const std::vector<cv::DMatch> matches = MatchFeatures(options_.matching, ref.features, cur);
-  r->times.matching += Since(t0);
+RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference& cur,
+                                           const std::vector<cv::DMatch>& matches, FrameResult* r,
+                                           std::vector<int>* match_of_pair) {
   r->matches = static_cast<int>(matches.size());
-
-  t0 = std::chrono::steady_clock::now();
-  const std::vector<PointPair> pairs =
-      LiftMatches(calib_, options_.lifting, ref.depth_m, depth_m, ref.features, cur, matches);
+  auto t0 = std::chrono::steady_clock::now();
+  const std::vector<PointPair> pairs = PairMatches(ref.points, cur.points, matches, match_of_pair);
   r->times.lifting += Since(t0);
   r->pairs = static_cast<int>(pairs.size());
 
@@ -137,7 +137,48 @@ RansacResult Odometry::Estimate(const Reference& ref, const Features& cur, const
   }
   r->times.ransac += Since(t0);
   r->inliers = static_cast<int>(ransac.inliers.size());
+  return ransac;
+}
+
+RansacResult Odometry::Estimate(const Reference& ref, const Reference& cur,
+                                const Rigid3d& world_from_cur_pred, FrameResult* r,
+                                std::string* reason) {
+  auto t0 = std::chrono::steady_clock::now();
+  const Rigid3d cur_from_ref = world_from_cur_pred.inverse() * ref.world_from_cam;
+  const std::vector<std::optional<Eigen::Vector2d>> predicted =
+      PredictKeypoints(calib_, ref.points, cur_from_ref);
+  const bool guided = options_.guided_radius_px > 0;
+  std::vector<cv::DMatch> matches;
+  if (guided) {
+    GuidedMatchOptions g;
+    g.radius_px = options_.guided_radius_px;
+    g.ratio = options_.matching.ratio;
+    g.mutual = options_.matching.mutual;
+    matches = MatchGuided(g, ref.features, predicted, cur.features);
+  } else {
+    matches = MatchFeatures(options_.matching, ref.features, cur.features);
+  }
+  r->times.matching += Since(t0);
+  std::vector<int> match_of_pair;
+  RansacResult ransac = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
   *reason = CheckMotion(options_.verify, ransac);
+  if (guided && !reason->empty()) {
+    // The prior was wrong (or the guided matches too few): brute force, as without it.
+    ++r->fallbacks;
+    t0 = std::chrono::steady_clock::now();
+    matches = MatchFeatures(options_.matching, ref.features, cur.features);
+    r->times.matching += Since(t0);
+    ransac = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
+    *reason = CheckMotion(options_.verify, ransac);
+  }
+  r->prediction_error_px.clear();
+  for (int k : ransac.inliers) {
+    const cv::DMatch& m = matches[match_of_pair[k]];
+    if (!predicted[m.queryIdx]) continue;
+    const cv::Point2f& pt = cur.features.keypoints[m.trainIdx].pt;
+    r->prediction_error_px.push_back(
+        static_cast<float>((*predicted[m.queryIdx] - Eigen::Vector2d(pt.x, pt.y)).norm()));
+  }
   return ransac;
 }
 
@@ -146,20 +187,37 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   r.frame = frame.index;
   r.timestamp = frame.timestamp;
   r.features = static_cast<int>(features.size());
-  Reference cur{std::move(features), frame.depth_m, Rigid3d::Identity(), frame.index, -1};
+  const auto t0 = std::chrono::steady_clock::now();
+  Reference cur;
+  cur.points = LiftKeypoints(calib_, options_.lifting, frame.depth_m, features);
+  cur.features = std::move(features);
+  cur.frame = frame.index;
+  cur.color_timestamp = frame.color_timestamp;
+  r.times.lifting += Since(t0);
 
   if (!started_) {
     started_ = true;
     key_ = last_ = cur;
+    has_before_ = false;
     r.status = FrameStatus::kFirst;
     return r;
   }
 
-  RansacResult motion = Estimate(key_, cur.features, cur.depth_m, &r, &r.reason);
+  // The motion prior: constant velocity from the last two accepted frames (none yet: zero),
+  // timed by the colour images, where the keypoints are seen. (The depth images' times are
+  // irregular: two colour frames can share one depth frame. Measured on fr1/xyz with brute-force
+  // matching, prediction error of the final inliers at the 99th percentile / max: 8.5 / 16.0 px
+  // with the colour times, 9.1 / 19.8 px with the depth times.)
+  const Rigid3d world_from_cur_pred =
+      has_before_
+          ? PredictConstantVelocity(world_from_before_, before_color_time_, last_.world_from_cam,
+                                    last_.color_timestamp, cur.color_timestamp)
+          : last_.world_from_cam;
+  RansacResult motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
   if (!r.reason.empty() && last_.frame != key_.frame) {
     // The keyframe is out of reach: try the last accepted frame, which then becomes the keyframe.
     std::string reason;
-    RansacResult fallback = Estimate(last_, cur.features, cur.depth_m, &r, &reason);
+    RansacResult fallback = Estimate(last_, cur, world_from_cur_pred, &r, &reason);
     if (reason.empty()) {
       key_ = last_;
       motion = std::move(fallback);
@@ -175,6 +233,9 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     if (!(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
           options_.keyframe_inlier_ratio > 0))
       key_ = cur;
+    world_from_before_ = last_.world_from_cam;
+    before_color_time_ = last_.color_timestamp;
+    has_before_ = true;
     last_ = std::move(cur);
     rejected_run_ = 0;
     r.status = FrameStatus::kAccepted;
@@ -182,6 +243,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     // The references are out of reach: restart from this frame at the last known pose.
     cur.world_from_cam = last_.world_from_cam;
     key_ = last_ = std::move(cur);
+    has_before_ = false;
     rejected_run_ = 0;
     r.status = FrameStatus::kLost;
   } else {

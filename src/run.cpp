@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -176,6 +177,37 @@ std::string RunOptions::Describe() const {
          std::to_string(EffectiveQueueFrames()) + " frames read ahead";
 }
 
+void ErrorHistogram::Add(double value) {
+  const double bin = std::floor(std::max(value, 0.0) / kBin);
+  ++counts[static_cast<size_t>(std::min(bin, kBins - 1.0))];
+  ++n;
+  max = std::max(max, value);
+}
+
+double ErrorHistogram::Quantile(double q) const {
+  if (n == 0) return 0;
+  const double target = std::clamp(q, 0.0, 1.0) * static_cast<double>(n);
+  int64_t cumulative = 0;
+  for (int b = 0; b < kBins; ++b) {
+    cumulative += counts[b];
+    if (cumulative > 0 && static_cast<double>(cumulative) >= target)
+      return b == kBins - 1 ? max : std::min((b + 1) * kBin, max);
+  }
+  return max;
+}
+
+std::string RunSummary::Matching() const {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  const ErrorHistogram& h = prediction_error_px;
+  s << "matching: " << fallbacks << " brute-force fallbacks in " << frames_with_fallback
+    << " frames; prediction error of the inliers (px): p50 " << h.Quantile(0.5) << ", p90 "
+    << h.Quantile(0.9) << ", p99 " << h.Quantile(0.99) << ", max " << h.max << " (" << h.n
+    << " inliers)";
+  return s.str();
+}
+
 std::string RunSummary::Brief() const {
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -234,6 +266,10 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     summary.stage_seconds.matching += result.times.matching;
     summary.stage_seconds.lifting += result.times.lifting;
     summary.stage_seconds.ransac += result.times.ransac;
+    summary.fallbacks += result.fallbacks;
+    if (result.fallbacks > 0) ++summary.frames_with_fallback;
+    if (result.status == FrameStatus::kAccepted)
+      for (float e : result.prediction_error_px) summary.prediction_error_px.Add(e);
     summary.seconds = Since(start);
     if (on_frame) on_frame(result);
   }

@@ -24,6 +24,17 @@ TEST_CASE("ColorToIr applies eq. 1 per axis") {
   CHECK(ir.y() == Approx(0.92 * 200 + 19));
 }
 
+TEST_CASE("IrToColor inverts ColorToIr") {
+  const Calibration c = PaperLike();
+  for (double u : {0.0, 123.4, 639.0})
+    for (double v : {0.0, 240.0, 479.0}) {
+      const Eigen::Vector2d back = IrToColor(c, ColorToIr(c, {u, v}));
+      CHECK(back.x() == Approx(u).margin(1e-9));
+      CHECK(back.y() == Approx(v).margin(1e-9));
+    }
+  CHECK(IrToColor(c, {0.91 * 100 + 28, 0.92 * 200 + 19}).y() == Approx(200));
+}
+
 TEST_CASE("BackProject and ProjectIr round-trip and keep Z = depth") {
   const Calibration c = PaperLike();
   for (double u : {0.0, 123.4, 639.0})

@@ -1,5 +1,6 @@
 #include "rgbdvo/odometry.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 #include "rgbdvo/synthetic.hpp"
@@ -22,7 +23,7 @@ Calibration CalibFor(const PinholeCamera& cam) {
 Frame Render(const SyntheticScene& scene, const PinholeCamera& cam, const Rigid3d& pose, int i) {
   Frame f;
   f.index = i;
-  f.timestamp = i / 30.0;
+  f.timestamp = f.color_timestamp = i / 30.0;
   f.bgr = scene.RenderColor(cam, pose);
   f.depth_m = scene.RenderDepth(cam, pose);
   return f;
@@ -101,4 +102,63 @@ TEST_CASE("After max_rejected_run rejections the odometry restarts and says lost
   const FrameResult lost = odometry.Process(blank);
   CHECK(lost.status == FrameStatus::kLost);
   CHECK(lost.StatusString().rfind("lost:", 0) == 0);
+}
+
+TEST_CASE("Guided matching follows a smooth path without falling back") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(12, 0.02, 1.5);
+  OdometryOptions options;
+  REQUIRE(options.guided_radius_px > 0);  // the default
+  Odometry odometry(options, CalibFor(cam));
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    const FrameResult r = odometry.Process(Render(scene, cam, path[i], i));
+    INFO("frame " << i << " " << r.StatusString() << " inliers " << r.inliers);
+    REQUIRE((r.status == FrameStatus::kAccepted || r.status == FrameStatus::kFirst));
+    CHECK(r.fallbacks == 0);
+    CHECK(RigidNear(r.world_from_cam, path[i], 0.5, 0.01));
+    if (i == 0) continue;
+    CHECK(r.inliers > 100);
+    REQUIRE(r.prediction_error_px.size() == static_cast<size_t>(r.inliers));
+    // Frame 1 is predicted with zero velocity (some 15 px off: 1.5 degrees of yaw), the others
+    // by constant velocity, which the path's slowly changing velocity (at most 0.15 degrees per
+    // frame) leaves about 1 px off.
+    std::vector<float> e = r.prediction_error_px;
+    std::nth_element(e.begin(), e.begin() + e.size() / 2, e.end());
+    INFO("median prediction error " << e[e.size() / 2] << " px");
+    CHECK(e[e.size() / 2] < (i == 1 ? options.guided_radius_px : 2.0));
+    if (i == 1) CHECK(e[e.size() / 2] > 5.0);
+  }
+}
+
+TEST_CASE("A prediction beyond the radius falls back to brute force and gives the right motion") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.5);
+  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  odometry.Process(Render(scene, cam, path[0], 0));
+  REQUIRE(odometry.Process(Render(scene, cam, path[1], 1)).fallbacks == 0);
+  // Frame 2's colour image claims to come 3 s later: constant velocity extrapolates 90 frame
+  // steps (about 1.8 m and 135 degrees), so its keypoints are predicted far from where they are.
+  Frame late = Render(scene, cam, path[2], 2);
+  late.color_timestamp = 1 / 30.0 + 3.0;
+  const FrameResult r = odometry.Process(late);
+  INFO(r.StatusString() << " inliers " << r.inliers);
+  CHECK(r.fallbacks == 1);
+  CHECK(r.status == FrameStatus::kAccepted);
+  CHECK(RigidNear(r.world_from_cam, path[2], 0.5, 0.01));
+  // With brute force only there is nothing to fall back from.
+  OdometryOptions brute;
+  brute.guided_radius_px = 0;
+  Odometry brute_odometry(brute, CalibFor(cam));
+  brute_odometry.Process(Render(scene, cam, path[0], 0));
+  brute_odometry.Process(Render(scene, cam, path[1], 1));
+  const FrameResult b = brute_odometry.Process(late);
+  CHECK(b.fallbacks == 0);
+  CHECK(RigidNear(b.world_from_cam, path[2], 0.5, 0.01));
+}
+
+TEST_CASE("The paper preset matches by brute force") {
+  CHECK(PresetOptions("paper").guided_radius_px == 0);
+  CHECK(PresetOptions("default").guided_radius_px > 0);
 }

@@ -1,8 +1,11 @@
 #include "rgbdvo/run.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cmath>
+#include <random>
 #include <stdexcept>
 #include <thread>
 
@@ -116,7 +119,7 @@ TEST_CASE("A feature extraction error stops the pipeline after writing every fra
     std::string error;
     const std::vector<FrameResult> rows = RunWith(threads, 8, -1, &error, 4);
     INFO("threads " << threads);
-    CHECK_THAT(error, Catch::Contains("empty"));  // OpenCV's SIFT refuses the empty image
+    CHECK_THAT(error, Catch::Contains("empty image"));
     REQUIRE(rows.size() == 4);
     CHECK(rows.back().frame == 3);
   }
@@ -202,4 +205,25 @@ TEST_CASE("RunOptions::Check names the field") {
   CHECK(o.EffectiveQueueFrames() == 3);  // raised to the number of workers
   o.threads = 1;
   CHECK(o.EffectiveQueueFrames() == 0);
+}
+
+TEST_CASE("ErrorHistogram quantiles are within one bin of the exact ones") {
+  ErrorHistogram h;
+  CHECK(h.Quantile(0.5) == 0);
+  std::vector<double> values;
+  std::mt19937 rng(11);
+  std::exponential_distribution<double> e(0.3);  // mean 3.3 px, a tail beyond 100 px is rare
+  for (int k = 0; k < 5000; ++k) values.push_back(e(rng));
+  values.push_back(250.0);  // beyond the last bin
+  for (double v : values) h.Add(v);
+  std::sort(values.begin(), values.end());
+  CHECK(h.n == static_cast<int64_t>(values.size()));
+  CHECK(h.max == 250.0);
+  for (double q : {0.5, 0.9, 0.99}) {
+    const double exact = values[static_cast<size_t>(std::ceil(q * values.size())) - 1];
+    INFO("q " << q << " exact " << exact << " histogram " << h.Quantile(q));
+    CHECK(h.Quantile(q) >= exact);
+    CHECK(h.Quantile(q) <= exact + ErrorHistogram::kBin + 1e-9);
+  }
+  CHECK(h.Quantile(1.0) == 250.0);
 }

@@ -12,6 +12,9 @@ namespace rgbdvo {
 // Paper eq. 1: the IR (depth image) pixel that sees what colour pixel uv_vis sees.
 Eigen::Vector2d ColorToIr(const Calibration& calib, const Eigen::Vector2d& uv_vis);
 
+// Inverse of eq. 1: the colour pixel u = (u_ir - B) / A, v = (v_ir - D) / C.
+Eigen::Vector2d IrToColor(const Calibration& calib, const Eigen::Vector2d& uv_ir);
+
 // The undistorted normalised coordinates (x, y) = K_ir^-1 [u, v, 1] of IR pixel uv_ir, with
 // dist_ir removed (fixed-point inversion of OpenCV's model, as cv::undistortPoints does).
 Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_ir);

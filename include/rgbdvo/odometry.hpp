@@ -3,11 +3,13 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/features.hpp"
 #include "rgbdvo/frame.hpp"
 #include "rgbdvo/geometry.hpp"
+#include "rgbdvo/guided_matching.hpp"
 #include "rgbdvo/matching.hpp"
 #include "rgbdvo/motion_check.hpp"
 #include "rgbdvo/point_pairs.hpp"
@@ -19,6 +21,11 @@ namespace rgbdvo {
 struct OdometryOptions {
   FeatureOptions features;
   MatchOptions matching;
+  // Guided matching (issue 7): a reference keypoint is compared only with the current keypoints
+  // within this radius of where the constant-velocity motion prior puts it (colour pixels; ratio
+  // and mutual check from `matching`); an estimate that fails verification is redone with
+  // brute-force matching. 0 = brute force only (the paper). See GuidedMatchOptions::radius_px.
+  double guided_radius_px = 30;
   LiftOptions lifting;
   RansacOptions ransac;
   MotionCheckOptions verify;
@@ -61,6 +68,11 @@ struct FrameResult {
   int matches = 0;
   int pairs = 0;  // matches with depth at both ends
   int inliers = 0;
+  // Estimates redone with brute-force matching because the guided one failed verification.
+  int fallbacks = 0;
+  // For each final inlier: the distance from where the motion prior predicted its reference
+  // keypoint to the current keypoint it was matched with, colour pixels.
+  std::vector<float> prediction_error_px;
   FrameStatus status = FrameStatus::kFirst;
   std::string reason;  // why rejected or lost, "" otherwise
   StageTimes times;
@@ -85,14 +97,20 @@ class Odometry {
  private:
   struct Reference {
     Features features;
-    cv::Mat depth_m;
+    KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once
     Rigid3d world_from_cam = Rigid3d::Identity();
     int frame = -1;
-    int first_inliers = -1;  // inliers of the first frame matched against it
+    double color_timestamp = 0;  // seconds (Frame::color_timestamp)
+    int first_inliers = -1;      // inliers of the first frame matched against it
   };
-  // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts.
-  RansacResult Estimate(const Reference& ref, const Features& cur, const cv::Mat& depth_m,
-                        FrameResult* r, std::string* reason);
+  // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided
+  // by world_from_cur_pred, with a brute-force retry if that fails verification.
+  RansacResult Estimate(const Reference& ref, const Reference& cur,
+                        const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
+  // RANSAC and refinement on the 3D pairs of `matches`; match_of_pair as in PairMatches.
+  RansacResult EstimateFromMatches(const Reference& ref, const Reference& cur,
+                                   const std::vector<cv::DMatch>& matches, FrameResult* r,
+                                   std::vector<int>* match_of_pair);
 
   OdometryOptions options_;
   Calibration calib_;
@@ -101,6 +119,10 @@ class Odometry {
   bool started_ = false;
   Reference key_;   // what frames are matched against
   Reference last_;  // the last accepted frame (fallback when the keyframe fails)
+  // The accepted frame before last_ (pose and colour time) for the constant-velocity prior.
+  bool has_before_ = false;
+  Rigid3d world_from_before_ = Rigid3d::Identity();
+  double before_color_time_ = 0;
   int rejected_run_ = 0;
 };
 

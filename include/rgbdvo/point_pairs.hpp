@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "rgbdvo/calibration.hpp"
@@ -21,6 +22,21 @@ struct LiftOptions {
   double max_depth_jump_ratio = 0.03;
   void Check() const;
 };
+
+// The 3D point (IR camera frame) of every keypoint, or nullopt without depth: LiftColorPixel
+// with options.max_depth_jump_ratio. Done once per frame, so a frame matched against several
+// references (or kept as one) is not lifted again.
+using KeypointPoints = std::vector<std::optional<Eigen::Vector3d>>;
+KeypointPoints LiftKeypoints(const Calibration& calib, const LiftOptions& options,
+                             const cv::Mat& depth_m, const Features& features);
+
+// The pairs of the matches whose two keypoints have a 3D point (queryIdx indexes prev_points,
+// trainIdx cur_points), in match order; the same pairs as LiftMatches on the same depths. If
+// match_of_pair is given it receives, for each pair, the index of its match.
+std::vector<PointPair> PairMatches(const KeypointPoints& prev_points,
+                                   const KeypointPoints& cur_points,
+                                   const std::vector<cv::DMatch>& matches,
+                                   std::vector<int>* match_of_pair = nullptr);
 
 // Lifts every match whose two keypoints have a depth reading; matches without depth are dropped.
 std::vector<PointPair> LiftMatches(const Calibration& calib, const LiftOptions& options,

@@ -1,6 +1,7 @@
 #pragma once
 // The body of `rgbdvo run`: a source through the odometry into the writers.
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,6 +34,20 @@ struct RunOptions {
   std::string Describe() const;
 };
 
+// Distribution of non-negative values (pixel errors) in fixed bins, bounded memory however long
+// the run: 0.1 px bins up to 100 px, the last bin holding everything beyond.
+struct ErrorHistogram {
+  static constexpr double kBin = 0.1;
+  static constexpr int kBins = 1001;
+  std::vector<int64_t> counts = std::vector<int64_t>(kBins, 0);
+  int64_t n = 0;
+  double max = 0;
+  void Add(double value);
+  // The upper edge of the bin holding the q-quantile (q in [0, 1]), so at most kBin above the
+  // exact value (or `max` for the last bin); 0 when empty.
+  double Quantile(double q) const;
+};
+
 struct RunSummary {
   int frames = 0;
   int accepted = 0;         // includes the first frame
@@ -47,8 +62,14 @@ struct RunSummary {
   // Time the calling thread waited for the next frame's features (0 with one thread): near
   // `seconds` when the workers are the bottleneck, near 0 when the odometry is.
   double wait_seconds = 0;
+  int fallbacks = 0;  // estimates redone with brute-force matching (FrameResult::fallbacks)
+  int frames_with_fallback = 0;
+  // Prediction error of the final inliers of accepted frames (FrameResult::prediction_error_px).
+  ErrorHistogram prediction_error_px;
   std::string Brief() const;   // one line: frames, accepted, rejected, mean inliers, fps
   std::string Timing() const;  // one line: milliseconds per frame for each stage
+  // One line: brute-force fallbacks and percentiles of the prediction error.
+  std::string Matching() const;
 };
 
 // Runs until the source ends. Each result goes to every writer (flushed) and then to

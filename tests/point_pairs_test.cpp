@@ -1,0 +1,52 @@
+#include "rgbdvo/point_pairs.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "rgbdvo/camera.hpp"
+#include "rgbdvo/matching.hpp"
+#include "rgbdvo/synthetic.hpp"
+#include "test_support.hpp"
+
+using namespace rgbdvo;
+using namespace rgbdvo::test;
+
+TEST_CASE("Lifting every keypoint once gives the same pairs as lifting each match") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(2, 0.03, 2.0);
+  const SiftExtractor sift{FeatureOptions{}};
+  const Features prev = sift.Extract(scene.RenderColor(cam, path[0]));
+  const Features cur = sift.Extract(scene.RenderColor(cam, path[1]));
+  const cv::Mat depth_prev = scene.RenderDepth(cam, path[0]),
+                depth_cur = scene.RenderDepth(cam, path[1]);
+  const std::vector<cv::DMatch> matches = MatchFeatures(MatchOptions{}, prev, cur);
+  Calibration calib;  // a Kinect-like mapping with lens distortion: every step of the lifting
+  calib.A = 0.98;
+  calib.B = -10.0;  // colour pixels near the left and top edges map outside the depth image
+  calib.C = 0.99;
+  calib.D = -8.0;
+  calib.fx = calib.fy = 525;
+  calib.dist_ir = {0.05, -0.1, 0.001, -0.001, 0.02};
+  for (const double jump : {0.03, 0.0}) {  // bilinear (default) and the paper's nearest pixel
+    LiftOptions o;
+    o.max_depth_jump_ratio = jump;
+    const std::vector<PointPair> expected =
+        LiftMatches(calib, o, depth_prev, depth_cur, prev, cur, matches);
+    std::vector<int> match_of_pair;
+    const std::vector<PointPair> got =
+        PairMatches(LiftKeypoints(calib, o, depth_prev, prev),
+                    LiftKeypoints(calib, o, depth_cur, cur), matches, &match_of_pair);
+    INFO("jump " << jump << ": " << matches.size() << " matches, " << expected.size() << " pairs");
+    REQUIRE(got.size() == expected.size());
+    CHECK(got.size() > 200);
+    CHECK(got.size() < matches.size());  // some matches have no depth
+    REQUIRE(match_of_pair.size() == got.size());
+    for (size_t k = 0; k < got.size(); ++k) {
+      CHECK(got[k].p_prev == expected[k].p_prev);  // bit for bit
+      CHECK(got[k].p_cur == expected[k].p_cur);
+      const cv::DMatch& m = matches[match_of_pair[k]];
+      const cv::Point2f a = prev.keypoints[m.queryIdx].pt;
+      CHECK(*LiftColorPixel(calib, depth_prev, {a.x, a.y}, jump) == got[k].p_prev);
+    }
+  }
+}
