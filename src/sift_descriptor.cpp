@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cstring>
-#include <vector>
 
 #include "rgbdvo/simd.hpp"
 
@@ -24,17 +23,18 @@ constexpr int kPerBin = 4;         // grid samples per bin and side
 constexpr int kGrid = (kWidth + 1) * kPerBin;
 constexpr int kSamples = kGrid * kGrid;
 
+// Each spatial bin takes the samples of a square of kSpan x kSpan grid points (those within one
+// bin of its centre): bin (br, bc) takes rows kPerBin * br .. + kSpan - 1 and the same columns.
+constexpr int kSpan = 2 * kPerBin;
+
 // The fixed sampling grid: where each sample lies (rotated bin units, relative to the
-// keypoint), its Gaussian weight, and the spatial bins it is interpolated into.
+// keypoint), its Gaussian weight, and the bilinear weights with which it enters its bins.
 struct Grid {
   std::array<float, kGrid> offset;  // bin coordinate - (kWidth - 1) / 2, per grid line
   std::array<float, kSamples> weight;
-  struct Splat {
-    int sample;
-    float weight;  // bilinear weight
-  };
-  // Per spatial bin (row * kWidth + col), the samples interpolated into it.
-  std::array<std::vector<Splat>, kWidth * kWidth> splats;
+  // Per spatial bin (row * kWidth + col), the bilinear weight of each sample of its square,
+  // row by row (entry i: grid row kPerBin * br + i / kSpan, column kPerBin * bc + i % kSpan).
+  std::array<std::array<float, kSpan * kSpan>, kWidth * kWidth> splat;
 };
 
 const Grid& TheGrid() {
@@ -54,17 +54,24 @@ const Grid& TheGrid() {
       for (int c = 0; c < kGrid; ++c) {
         const int s = r * kGrid + c;
         g.weight[s] = std::exp((g.offset[r] * g.offset[r] + g.offset[c] * g.offset[c]) * scale);
+        // Grid line i lies between bins bin0[i] and bin0[i] + 1 = i / kPerBin (never on one).
         for (int a = 0; a < 2; ++a)
           for (int b = 0; b < 2; ++b) {
             const int br = bin0[r] + a, bc = bin0[c] + b;
             if (br < 0 || br >= kWidth || bc < 0 || bc >= kWidth) continue;
             const float w = (a ? frac[r] : 1 - frac[r]) * (b ? frac[c] : 1 - frac[c]);
-            if (w > 0) g.splats[br * kWidth + bc].push_back({s, w});
+            g.splat[br * kWidth + bc][(r - kPerBin * br) * kSpan + (c - kPerBin * bc)] = w;
           }
       }
     return g;
   }();
   return grid;
+}
+
+inline v8f Load(const float* p) {
+  v8f v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
 }
 
 }  // namespace
@@ -181,21 +188,22 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
     std::memcpy(split[s], &v, sizeof v);
   }
   float hist[kWidth * kWidth * kBins];
-  for (int b = 0; b < kWidth * kWidth; ++b) {
-    // Two running sums (even and odd samples) halve the chain of dependent additions.
-    float even[kBins] = {}, odd[kBins] = {};
-    const std::vector<Grid::Splat>& list = grid.splats[b];
-    const size_t n = list.size();
-    for (size_t i = 0; i < n; i += 2) {
-      const float we = list[i].weight, wo = i + 1 < n ? list[i + 1].weight : 0.0f;
-      const float* e = split[list[i].sample];
-      const float* o = split[list[i + 1 < n ? i + 1 : i].sample];
-      for (int k = 0; k < kBins; ++k) {
-        even[k] += we * e[k];
-        odd[k] += wo * o[k];
+  for (int br = 0; br < kWidth; ++br) {
+    // The kWidth bins of a row at once (independent chains of additions, in flight together);
+    // per bin, two running sums (even and odd entries of its square) that are added at the end.
+    v8f even[kWidth] = {}, odd[kWidth] = {};
+    for (int i = 0; i < kSpan * kSpan; i += 2) {
+      const float* row = split[(kPerBin * br + i / kSpan) * kGrid + i % kSpan];
+      for (int bc = 0; bc < kWidth; ++bc) {
+        const std::array<float, kSpan* kSpan>& w = grid.splat[br * kWidth + bc];
+        even[bc] += w[i] * Load(row + kPerBin * bc * kBins);
+        odd[bc] += w[i + 1] * Load(row + (kPerBin * bc + 1) * kBins);
       }
     }
-    for (int k = 0; k < kBins; ++k) hist[b * kBins + k] = even[k] + odd[k];
+    for (int bc = 0; bc < kWidth; ++bc) {
+      const v8f sum = even[bc] + odd[bc];
+      std::memcpy(hist + (br * kWidth + bc) * kBins, &sum, sizeof sum);
+    }
   }
 
   // Normalise, clip large gradients, renormalise (Lowe section 6.1); stored as 0..255.
