@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "rgbdvo/depth_encoding.hpp"
+#include "rgbdvo/png_decode.hpp"
 
 namespace fs = std::filesystem;
 
@@ -84,11 +85,11 @@ std::optional<Frame> TumSource::Next() {
   f.timestamp = p.depth.timestamp;
   f.color_timestamp = p.rgb.timestamp;
   f.name = p.rgb.path;
-  f.bgr = cv::imread(rgb_path, cv::IMREAD_COLOR);
+  f.bgr = ReadImage(rgb_path, cv::IMREAD_COLOR);
   if (f.bgr.empty())
     throw std::runtime_error(rgb_path +
                              ": cannot read colour image (missing, corrupt or truncated)");
-  const cv::Mat raw = cv::imread(depth_path, cv::IMREAD_UNCHANGED);
+  const cv::Mat raw = ReadImage(depth_path, cv::IMREAD_UNCHANGED);
   if (raw.empty())
     throw std::runtime_error(depth_path +
                              ": cannot read depth image (missing, corrupt or truncated)");
