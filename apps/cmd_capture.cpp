@@ -69,7 +69,7 @@ int Capture(CaptureArgs& a) {
     PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options, a.run);
     std::cout << "# Ctrl-C stops cleanly" << std::endl;
   }
-  LimitOpenCvThreads(a.run);
+  LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
   int warned_at = 0;

@@ -49,7 +49,7 @@ int Run(const RunArgs& a) {
     PrintConfiguration(std::cout, source->Describe(), a.calib, calib, odometry_options, a.run);
     std::cout << std::flush;
   }
-  LimitOpenCvThreads(a.run);
+  LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
   const RunSummary summary = RunOdometry(

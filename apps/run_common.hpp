@@ -24,8 +24,9 @@ struct TrajectoryOutputs {
 
 // --threads into options->threads.
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options);
-// Limits OpenCV's own parallel loops to suit `options`: one thread means one core.
-void LimitOpenCvThreads(const RunOptions& options);
+// Turns OpenCV's own parallel loops off: our threads (one, or the feature workers) are the
+// parallelism.
+void LimitOpenCvThreads();
 
 // The effective configuration as `# ` lines, so a run can be reproduced.
 void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,
