@@ -12,6 +12,7 @@ constexpr float kPi = 3.14159265358979f;
 // 8 floats / ints, GCC/Clang vector extension: one AVX register where the CPU has them.
 typedef float v8f __attribute__((vector_size(32)));
 typedef int v8i __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
 constexpr int kWidth = 4;          // spatial bins per side (Lowe: 4)
 constexpr int kBins = 8;           // orientation bins (Lowe: 8)
 constexpr float kBinWidth = 3.0f;  // a spatial bin is 3 sigma wide (OpenCV SIFT_DESCR_SCL_FCTR)
@@ -70,6 +71,12 @@ const Grid& TheGrid() {
 
 inline v8f Load(const float* p) {
   v8f v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline v4f Load4(const float* p) {
+  v4f v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
@@ -140,11 +147,13 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
 
   // 1. The gradient at every grid sample: central differences at the 4 pixels around it,
   //    interpolated bilinearly; 0 where the sample is too close to the image edge.
-  float dx[kSamples], dy[kSamples];
+  //    a) Where each sample lies, branch-free over a grid row (so that it vectorises): samples
+  //       too close to the edge are read at a clamped position and zeroed.
+  int at[kSamples];
+  float fxs[kSamples], fys[kSamples];
+  bool ins[kSamples];
   for (int gr = 0; gr < kGrid; ++gr) {
     const float r = grid.offset[gr];
-    // Branch-free over a grid row (so that it vectorises): samples too close to the edge are
-    // read at a clamped position and zeroed.
     for (int gc = 0; gc < kGrid; ++gc) {
       const float c = grid.offset[gc];
       // Rotated bin units -> image pixels (the inverse of OpenCV's rotation of pixel offsets).
@@ -152,19 +161,36 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
       const float fpx = std::floor(px), fpy = std::floor(py);
       const bool inside = fpx >= 1 && fpy >= 1 && fpx + 2 < cols && fpy + 2 < rows;
       const int x0 = inside ? static_cast<int>(fpx) : 1, y0 = inside ? static_cast<int>(fpy) : 1;
-      const float fx = px - fpx, fy = py - fpy;
-      const int i0 = y0 * step + x0;  // rows y0 - 1 .. y0 + 2 around column x0
-      const int i1 = i0 + step, im = i0 - step, i2 = i1 + step;
-      const float gx00 = data[i0 + 1] - data[i0 - 1], gx01 = data[i0 + 2] - data[i0];
-      const float gx10 = data[i1 + 1] - data[i1 - 1], gx11 = data[i1 + 2] - data[i1];
-      const float gy00 = data[im] - data[i1], gy01 = data[im + 1] - data[i1 + 1];
-      const float gy10 = data[i0] - data[i2], gy11 = data[i0 + 1] - data[i2 + 1];
-      const float gx0 = gx00 + fx * (gx01 - gx00), gx1 = gx10 + fx * (gx11 - gx10);
-      const float gy0 = gy00 + fx * (gy01 - gy00), gy1 = gy10 + fx * (gy11 - gy10);
       const int s = gr * kGrid + gc;
-      dx[s] = inside ? gx0 + fy * (gx1 - gx0) : 0.0f;
-      dy[s] = inside ? gy0 + fy * (gy1 - gy0) : 0.0f;
+      at[s] = y0 * step + x0;
+      fxs[s] = px - fpx;
+      fys[s] = py - fpy;
+      ins[s] = inside;
     }
+  }
+  //    b) Per sample, the 4 x 4 pixels around it (rows y0 - 1 .. y0 + 2, columns x0 - 1 ..
+  //       x0 + 2) as 4 vector loads; the 8 central differences and the bilinear interpolation
+  //       by lane shuffles, each value by the same operations as one at a time.
+  float dx[kSamples], dy[kSamples];
+  for (int s = 0; s < kSamples; ++s) {
+    const float* p = data + at[s] - 1;
+    const v4f m = Load4(p - step), a = Load4(p), b = Load4(p + step), c = Load4(p + 2 * step);
+    // (gx00, gx01, gx10, gx11): I(x + 1) - I(x - 1) on rows y0 and y0 + 1.
+    const v4f gx =
+        __builtin_shufflevector(a, b, 2, 3, 6, 7) - __builtin_shufflevector(a, b, 0, 1, 4, 5);
+    // (gy00, gy01, gy10, gy11): I(y - 1) - I(y + 1) at columns x0 and x0 + 1.
+    const v4f gy = __builtin_shufflevector(m - b, a - c, 1, 2, 5, 6);
+    // Columns x0 (left) and x0 + 1 (right) of (gx row y0, gx row y0 + 1, gy ..., gy ...).
+    const v4f left = __builtin_shufflevector(gx, gy, 0, 2, 4, 6);
+    const v4f right = __builtin_shufflevector(gx, gy, 1, 3, 5, 7);
+    const v4f fx = v4f{} + fxs[s];
+    const v4f g = left + fx * (right - left);  // (gx0, gx1, gy0, gy1)
+    const v4f g0 = __builtin_shufflevector(g, g, 0, 2, 0, 2);
+    const v4f g1 = __builtin_shufflevector(g, g, 1, 3, 1, 3);
+    const v4f fy = v4f{} + fys[s];
+    const v4f d = g0 + fy * (g1 - g0);  // (dx, dy, dx, dy)
+    dx[s] = ins[s] ? d[0] : 0.0f;
+    dy[s] = ins[s] ? d[1] : 0.0f;
   }
   // 2. Weighted magnitude and orientation bin relative to the keypoint's (vectorisable).
   float mag[kSamples], obin[kSamples];
