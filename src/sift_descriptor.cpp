@@ -97,6 +97,17 @@ RGBDVO_SIMD_CLONES float OrientationHistogram(const cv::Mat& level, int x, int y
   float mag[2 * kMaxRadius + 1], bin[2 * kMaxRadius + 1];
   const float to_bin = n / (2 * kPi);
   const size_t step = level.step1();
+  // Ask for the window's rows (and the one above and below it) up front: the loop below waits
+  // on the first read of each new row otherwise.
+  {
+    const int r0 = std::max(y - radius - 1, 0), r1 = std::min(y + radius + 1, level.rows - 1);
+    const int c0 = std::max(x - radius - 1, 0), c1 = std::min(x + radius + 1, level.cols - 1);
+    for (int yy = r0; yy <= r1; ++yy) {
+      const float* row = level.ptr<float>(yy);
+      for (int c = c0; c <= c1; c += 16) __builtin_prefetch(row + c);
+      __builtin_prefetch(row + c1);
+    }
+  }
   for (int i = -radius; i <= radius; ++i) {
     const int yy = y + i;
     if (yy <= 0 || yy >= level.rows - 1) continue;
