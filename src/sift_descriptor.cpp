@@ -194,11 +194,11 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
     // Columns x0 (left) and x0 + 1 (right) of (gx row y0, gx row y0 + 1, gy ..., gy ...).
     const v4f left = __builtin_shufflevector(gx, gy, 0, 2, 4, 6);
     const v4f right = __builtin_shufflevector(gx, gy, 1, 3, 5, 7);
-    const v4f fx = v4f{} + fxs[s];
+    const v4f fx = {fxs[s], fxs[s], fxs[s], fxs[s]};
     const v4f g = left + fx * (right - left);  // (gx0, gx1, gy0, gy1)
     const v4f g0 = __builtin_shufflevector(g, g, 0, 2, 0, 2);
     const v4f g1 = __builtin_shufflevector(g, g, 1, 3, 1, 3);
-    const v4f fy = v4f{} + fys[s];
+    const v4f fy = {fys[s], fys[s], fys[s], fys[s]};
     const v4f d = g0 + fy * (g1 - g0);  // (dx, dy, dx, dy)
     dx[s] = ins[s] ? d[0] : 0.0f;
     dy[s] = ins[s] ? d[1] : 0.0f;
