@@ -12,15 +12,6 @@ using namespace rgbdvo::test;
 
 namespace {
 
-Calibration CalibFor(const PinholeCamera& cam) {
-  Calibration c;  // registered depth: identity mapping, K of the colour camera
-  c.fx = cam.fx;
-  c.fy = cam.fy;
-  c.cx = cam.cx;
-  c.cy = cam.cy;
-  return c;
-}
-
 // Two views of the synthetic room: features of both, 3D points of the reference's keypoints and
 // the true cur_from_ref.
 struct ViewPair {

@@ -11,15 +11,6 @@ using namespace rgbdvo::test;
 
 namespace {
 
-Calibration CalibFor(const PinholeCamera& cam) {
-  Calibration c;  // registered depth: identity mapping, K of the colour camera
-  c.fx = cam.fx;
-  c.fy = cam.fy;
-  c.cx = cam.cx;
-  c.cy = cam.cy;
-  return c;
-}
-
 Frame Render(const SyntheticScene& scene, const PinholeCamera& cam, const Rigid3d& pose, int i) {
   Frame f;
   f.index = i;

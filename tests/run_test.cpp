@@ -38,14 +38,7 @@ class SyntheticSource : public FrameSource {
   }
   int calls() const { return calls_; }  // Next() calls so far (any thread may ask)
   std::string Describe() const override { return "synthetic"; }
-  Calibration Calib() const {
-    Calibration c;
-    c.fx = cam_.fx;
-    c.fy = cam_.fy;
-    c.cx = cam_.cx;
-    c.cy = cam_.cy;
-    return c;
-  }
+  Calibration Calib() const { return CalibFor(cam_); }
 
  private:
   SyntheticScene scene_;

@@ -52,6 +52,15 @@ std::vector<PointPair> SynthesizePairs(std::mt19937& rng, const Rigid3d& prev_fr
   return pairs;
 }
 
+Calibration CalibFor(const PinholeCamera& cam) {
+  Calibration c;
+  c.fx = cam.fx;
+  c.fy = cam.fy;
+  c.cx = cam.cx;
+  c.cy = cam.cy;
+  return c;
+}
+
 std::string MakeTempDir(const std::string& tag) {
   static std::atomic<int> counter{0};
   const auto dir =

@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "rgbdvo/calibration.hpp"
 #include "rgbdvo/geometry.hpp"
 #include "rgbdvo/point_pairs.hpp"
+#include "rgbdvo/synthetic.hpp"
 
 namespace rgbdvo::test {
 
@@ -25,6 +27,9 @@ Rigid3d RandomRigid(std::mt19937& rng, double angle_rad, double trans_m);
 // round(outlier_fraction*n) pairs get an unrelated p_prev.
 std::vector<PointPair> SynthesizePairs(std::mt19937& rng, const Rigid3d& prev_from_cur, int n,
                                        double sigma_m, double outlier_fraction);
+
+// The calibration of registered depth seen by `cam`: identity mapping, K of the colour camera.
+Calibration CalibFor(const PinholeCamera& cam);
 
 // A fresh empty temporary folder, unique per call.
 std::string MakeTempDir(const std::string& tag);
