@@ -10,6 +10,28 @@
 using namespace rgbdvo;
 using namespace rgbdvo::test;
 
+namespace {
+
+// The reference: each match's two keypoints lifted from their depth images (how pairs were made
+// before keypoints were lifted once per frame); matches without depth are dropped.
+std::vector<PointPair> LiftMatches(const Calibration& calib, const LiftOptions& options,
+                                   const cv::Mat& depth_prev, const cv::Mat& depth_cur,
+                                   const Features& prev, const Features& cur,
+                                   const std::vector<cv::DMatch>& matches) {
+  std::vector<PointPair> pairs;
+  for (const cv::DMatch& m : matches) {
+    const cv::Point2f a = prev.keypoints[m.queryIdx].pt, b = cur.keypoints[m.trainIdx].pt;
+    const auto p_prev = LiftColorPixel(calib, depth_prev, {a.x, a.y}, options.max_depth_jump_ratio);
+    if (!p_prev) continue;
+    const auto p_cur = LiftColorPixel(calib, depth_cur, {b.x, b.y}, options.max_depth_jump_ratio);
+    if (!p_cur) continue;
+    pairs.push_back({*p_prev, *p_cur});
+  }
+  return pairs;
+}
+
+}  // namespace
+
 TEST_CASE("Lifting every keypoint once gives the same pairs as lifting each match") {
   const SyntheticScene scene;
   const PinholeCamera cam;

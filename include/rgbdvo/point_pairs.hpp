@@ -31,17 +31,11 @@ KeypointPoints LiftKeypoints(const Calibration& calib, const LiftOptions& option
                              const cv::Mat& depth_m, const Features& features);
 
 // The pairs of the matches whose two keypoints have a 3D point (queryIdx indexes prev_points,
-// trainIdx cur_points), in match order; the same pairs as LiftMatches on the same depths. If
+// trainIdx cur_points), in match order (the same pairs as lifting both keypoints of each match). If
 // match_of_pair is given it receives, for each pair, the index of its match.
 std::vector<PointPair> PairMatches(const KeypointPoints& prev_points,
                                    const KeypointPoints& cur_points,
                                    const std::vector<cv::DMatch>& matches,
                                    std::vector<int>* match_of_pair = nullptr);
-
-// Lifts every match whose two keypoints have a depth reading; matches without depth are dropped.
-std::vector<PointPair> LiftMatches(const Calibration& calib, const LiftOptions& options,
-                                   const cv::Mat& depth_prev, const cv::Mat& depth_cur,
-                                   const Features& prev, const Features& cur,
-                                   const std::vector<cv::DMatch>& matches);
 
 }  // namespace rgbdvo
