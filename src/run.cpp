@@ -5,7 +5,6 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <exception>
 #include <map>
 #include <mutex>
@@ -31,38 +30,50 @@ struct Decoded {
   std::exception_ptr error;
 };
 
-// Reads the next frame and extracts its features; never throws (the error travels in the item).
+// Reads the next frame into d (nothing at the end of the source); never throws: an error
+// travels in d.error.
+void ReadNext(FrameSource& source, Decoded* d) {
+  try {
+    const Clock::time_point t0 = Clock::now();
+    d->frame = source.Next();
+    d->decode_seconds = Since(t0);
+  } catch (...) {
+    d->error = std::current_exception();
+  }
+}
+
+// Extracts the features of d's frame, if any; never throws.
+void ExtractFeatures(const SiftExtractor& extractor, Decoded* d) {
+  if (!d->frame) return;
+  try {
+    const Clock::time_point t0 = Clock::now();
+    d->features = extractor.Extract(d->frame->bgr);
+    d->feature_seconds = Since(t0);
+  } catch (...) {
+    d->error = std::current_exception();
+  }
+}
+
 Decoded DecodeNext(FrameSource& source, const SiftExtractor& extractor) {
   Decoded d;
-  try {
-    Clock::time_point t0 = Clock::now();
-    d.frame = source.Next();
-    d.decode_seconds = Since(t0);
-    if (d.frame) {
-      t0 = Clock::now();
-      d.features = extractor.Extract(d.frame->bgr);
-      d.feature_seconds = Since(t0);
-    }
-  } catch (...) {
-    d.error = std::current_exception();
-  }
+  ReadNext(source, &d);
+  ExtractFeatures(extractor, &d);
   return d;
 }
 
 // W feature workers feeding the calling thread in sequence order. Each worker takes the next
 // frame from the source under `source_mutex_` (decoding is serial, so frames get consecutive
-// sequence numbers in source order), extracts its features with its own extractor (so
-// SiftExtractor::Extract need not be thread-safe) and files the result under its sequence
+// sequence numbers in source order), extracts its features with the shared extractor
+// (SiftExtractor::Extract is thread-safe) and files the result under its sequence
 // number; Next() hands them out strictly in order. At most `capacity` frames are read ahead of
 // the consumer. After the end of the source or an error no more frames are read; the
 // destructor stops and joins the workers (also when the consumer throws).
 class FeatureWorkers {
  public:
-  FeatureWorkers(FrameSource& source, const FeatureOptions& features, int workers, int capacity)
-      : source_(source), capacity_(capacity) {
-    for (int i = 0; i < workers; ++i) extractors_.emplace_back(features);
+  FeatureWorkers(FrameSource& source, const SiftExtractor& extractor, int workers, int capacity)
+      : source_(source), extractor_(extractor), capacity_(capacity) {
     try {
-      for (const SiftExtractor& e : extractors_) threads_.emplace_back([this, &e] { Work(e); });
+      for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { Work(); });
     } catch (...) {  // no thread for the next worker: stop those started
       Stop();
       throw;
@@ -98,7 +109,7 @@ class FeatureWorkers {
     for (std::thread& t : threads_) t.join();
   }
 
-  void Work(const SiftExtractor& extractor) {
+  void Work() {
     for (;;) {
       std::unique_lock<std::mutex> source_lock(source_mutex_);
       int64_t seq;
@@ -109,27 +120,13 @@ class FeatureWorkers {
         seq = read_++;
       }
       Decoded d;
-      try {
-        const Clock::time_point t0 = Clock::now();
-        d.frame = source_.Next();
-        d.decode_seconds = Since(t0);
-      } catch (...) {
-        d.error = std::current_exception();
-      }
+      ReadNext(source_, &d);
       if (!d.frame) {  // the end or an error: nothing after it is read
         std::lock_guard<std::mutex> lock(mutex_);
         ended_ = true;
       }
       source_lock.unlock();
-      if (d.frame) {
-        try {
-          const Clock::time_point t0 = Clock::now();
-          d.features = extractor.Extract(d.frame->bgr);
-          d.feature_seconds = Since(t0);
-        } catch (...) {
-          d.error = std::current_exception();
-        }
-      }
+      ExtractFeatures(extractor_, &d);
       {
         std::lock_guard<std::mutex> lock(mutex_);
         done_.emplace(seq, std::move(d));
@@ -139,10 +136,10 @@ class FeatureWorkers {
   }
 
   FrameSource& source_;
+  const SiftExtractor& extractor_;
   const int64_t capacity_;
-  std::deque<SiftExtractor> extractors_;  // one per worker; a deque never moves them
-  std::mutex source_mutex_;               // serialises source_.Next()
-  std::mutex mutex_;                      // guards everything below
+  std::mutex source_mutex_;  // serialises source_.Next()
+  std::mutex mutex_;         // guards everything below
   std::condition_variable ready_, room_;
   std::map<int64_t, Decoded> done_;  // reorder buffer: finished frames by sequence number
   int64_t read_ = 0;                 // frames taken from the source
@@ -241,8 +238,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   double inlier_sum = 0;
   std::optional<FeatureWorkers> workers;
   if (summary.threads > 1)
-    workers.emplace(source, odometry.options().features, summary.threads,
-                    options.EffectiveQueueFrames());
+    workers.emplace(source, odometry.extractor(), summary.threads, options.EffectiveQueueFrames());
   for (;;) {
     double waited = 0;
     Decoded d = workers ? workers->Next(&waited) : DecodeNext(source, odometry.extractor());
