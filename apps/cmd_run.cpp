@@ -58,7 +58,10 @@ int Run(const RunArgs& a) {
         if (progress)
           std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
       },
-      a.run);
+      a.run,
+      [&](const std::string& warning) {
+        std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: " << warning << std::endl;
+      });
   if (progress) std::cerr << "\n";
   std::cout << summary.Brief() << std::endl;
   if (a.timing) std::cout << summary.Timing() << "\n" << summary.Matching() << std::endl;

@@ -102,6 +102,9 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
   Add<int>(
       "--max-rejected-run", [](O& o) -> int& { return o.max_rejected_run; },
       "after N rejected frames in a row restart from the current frame (0 = never)");
+  AddSwitch(
+      "--no-predict", [](O& o) -> bool& { return o.predict_failed_frames; }, false,
+      "report a frame without an estimate at the last pose (the paper), not the prediction");
   Add<uint32_t>(
       "--seed", [](O& o) -> uint32_t& { return o.seed; }, "RANSAC random seed");
 }

@@ -41,6 +41,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.undistort = false;                   // "a perfect pinhole model was used"
     o.lifting.max_depth_jump_ratio = 0;    // depth at the nearest pixel
     o.guided_radius_px = 0;                // brute-force matching
+    o.predict_failed_frames = false;       // a rejected frame keeps the last pose
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
@@ -75,8 +76,14 @@ std::string OdometryOptions::ToString() const {
     << "keyframe_inlier_ratio = " << keyframe_inlier_ratio << "\n"
     << "undistort = " << (undistort ? "true" : "false") << "\n"
     << "max_rejected_run = " << max_rejected_run << "\n"
+    << "predict_failed_frames = " << (predict_failed_frames ? "true" : "false") << "\n"
     << "seed = " << seed << "\n";
   return s.str();
+}
+
+bool HasEstimate(FrameStatus status) {
+  return status == FrameStatus::kFirst || status == FrameStatus::kAccepted ||
+         status == FrameStatus::kRecovered;
 }
 
 std::string FrameResult::StatusString() const {
@@ -85,6 +92,10 @@ std::string FrameResult::StatusString() const {
       return "first";
     case FrameStatus::kAccepted:
       return "accepted";
+    case FrameStatus::kRecovered:
+      return "recovered";
+    case FrameStatus::kPredicted:
+      return "predicted:" + reason;
     case FrameStatus::kRejected:
       return "rejected:" + reason;
     case FrameStatus::kLost:
@@ -121,16 +132,19 @@ RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference
   t0 = std::chrono::steady_clock::now();
   RansacResult ransac = EstimateRigidRansac(options_.ransac, pairs, rng_);
   if (ransac.success && options_.refine_enabled) {
-    // Refine on the RANSAC inliers, re-select inliers by whitened error, refine again.
+    // Refine on the RANSAC inliers, measure the frame's noise scale there, re-select inliers by
+    // whitened error at that scale, refine again at that scale.
     const double f = 0.5 * (calib_.fx + calib_.fy);
     Rigid3d T =
         RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
+    const RefineOptions scaled = ScaleNoise(
+        options_.refine, EstimateNoiseScale(options_.refine, f, pairs, ransac.inliers, T));
     std::vector<int> inliers;
     for (size_t k = 0; k < pairs.size(); ++k)
-      if (WhitenedError(options_.refine, f, pairs[k], T) < options_.refine.inlier_sigmas)
+      if (WhitenedError(scaled, f, pairs[k], T) < scaled.inlier_sigmas)
         inliers.push_back(static_cast<int>(k));
     if (inliers.size() >= 3) {
-      T = RefineMotion(options_.refine, f, pairs, inliers, T).prev_from_cur;
+      T = RefineMotion(scaled, f, pairs, inliers, T).prev_from_cur;
       ransac.inliers = std::move(inliers);
       ransac.prev_from_cur = T;
     }
@@ -214,6 +228,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
                                     last_.color_timestamp, cur.color_timestamp)
           : last_.world_from_cam;
   RansacResult motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
+  bool recovered = false;
   if (!r.reason.empty() && last_.frame != key_.frame) {
     // The keyframe is out of reach: try the last accepted frame, which then becomes the keyframe.
     std::string reason;
@@ -222,6 +237,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       key_ = last_;
       motion = std::move(fallback);
       r.reason.clear();
+      recovered = true;
     }
   }
 
@@ -238,18 +254,22 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     has_before_ = true;
     last_ = std::move(cur);
     rejected_run_ = 0;
-    r.status = FrameStatus::kAccepted;
-  } else if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run) {
-    // The references are out of reach: restart from this frame at the last known pose.
-    cur.world_from_cam = last_.world_from_cam;
+    r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
+    r.world_from_cam = last_.world_from_cam;
+    return r;
+  }
+  r.world_from_cam = options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
+  r.world_from_cam.linear() = NearestRotation(r.world_from_cam.linear());
+  if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run) {
+    // The references are out of reach: restart from this frame at the pose just reported.
+    cur.world_from_cam = r.world_from_cam;
     key_ = last_ = std::move(cur);
     has_before_ = false;
     rejected_run_ = 0;
     r.status = FrameStatus::kLost;
   } else {
-    r.status = FrameStatus::kRejected;
+    r.status = options_.predict_failed_frames ? FrameStatus::kPredicted : FrameStatus::kRejected;
   }
-  r.world_from_cam = last_.world_from_cam;
   return r;
 }
 

@@ -1,6 +1,7 @@
 #include "rgbdvo/refine.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -103,6 +104,41 @@ double WhitenedError(const RefineOptions& o, double f, const PointPair& p, const
   if (q.z() <= 1e-6 || s.z() <= 1e-6) return std::numeric_limits<double>::infinity();
   return std::max(Residual(o, f, q, p.p_prev, nullptr).norm(),
                   Residual(o, f, s, p.p_cur, nullptr).norm());
+}
+
+NoiseScale EstimateNoiseScale(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
+                              const std::vector<int>& idx, const Rigid3d& T) {
+  std::vector<double> pixel, depth;
+  const Eigen::Matrix3d Rt = T.linear().transpose();
+  for (int k : idx) {
+    const PointPair& p = pairs[k];
+    const Eigen::Vector3d q = T * p.p_cur;
+    const Eigen::Vector3d s = Rt * (p.p_prev - T.translation());
+    if (q.z() <= 1e-6 || s.z() <= 1e-6) continue;
+    for (const Eigen::Vector3d& r :
+         {Residual(o, f, q, p.p_prev, nullptr), Residual(o, f, s, p.p_cur, nullptr)}) {
+      pixel.push_back(r.head<2>().norm());
+      depth.push_back(std::abs(r.z()));
+    }
+  }
+  NoiseScale scale;
+  if (pixel.empty()) return scale;
+  const auto median = [](std::vector<double>& v) {
+    auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+  };
+  constexpr double kMedianChi2 = 1.177;  // sqrt of chi-squared(2)'s median 1.386
+  constexpr double kMedianAbsNormal = 0.674;
+  scale.pixel = std::max(1.0, median(pixel) / kMedianChi2);
+  scale.depth = std::max(1.0, median(depth) / kMedianAbsNormal);
+  return scale;
+}
+
+RefineOptions ScaleNoise(RefineOptions o, const NoiseScale& scale) {
+  o.pixel_sigma *= scale.pixel;
+  o.depth_noise_coeff *= scale.depth;
+  return o;
 }
 
 RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,

@@ -6,6 +6,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
+#include <iomanip>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -209,8 +210,11 @@ std::string RunSummary::Brief() const {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(1);
-  s << frames << " frames, " << accepted << " accepted, " << rejected << " rejected, mean inliers "
-    << mean_inliers << ", " << (seconds > 0 ? frames / seconds : 0.0) << " fps";
+  s << frames << " frames, " << accepted << " accepted, " << recovered << " recovered, "
+    << predicted << " predicted, " << rejected << " rejected, " << lost << " lost, longest gap "
+    << longest_gap_frames << " frames (" << std::setprecision(2) << longest_gap_seconds
+    << " s), mean inliers " << std::setprecision(1) << mean_inliers << ", "
+    << (seconds > 0 ? frames / seconds : 0.0) << " fps";
   return s.str();
 }
 
@@ -230,12 +234,14 @@ std::string RunSummary::Timing() const {
 RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
                        const std::vector<TrajectoryWriter*>& writers,
                        const std::function<void(const FrameResult&)>& on_frame,
-                       const RunOptions& options) {
+                       const RunOptions& options,
+                       const std::function<void(const std::string&)>& on_warning) {
   options.Check();
   RunSummary summary;
   summary.threads = options.EffectiveThreads();
   const Clock::time_point start = Clock::now();
   double inlier_sum = 0;
+  TrackingGaps gaps;
   std::optional<FeatureWorkers> workers;
   if (summary.threads > 1)
     workers.emplace(source, odometry.extractor(), summary.threads, options.EffectiveQueueFrames());
@@ -253,10 +259,26 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     summary.write_seconds += Since(t0);
 
     ++summary.frames;
-    if (result.status == FrameStatus::kFirst || result.status == FrameStatus::kAccepted)
-      ++summary.accepted;
-    else
-      ++summary.rejected;
+    switch (result.status) {
+      case FrameStatus::kFirst:
+      case FrameStatus::kAccepted:
+        ++summary.accepted;
+        break;
+      case FrameStatus::kRecovered:
+        ++summary.recovered;
+        break;
+      case FrameStatus::kPredicted:
+        ++summary.predicted;
+        break;
+      case FrameStatus::kRejected:
+        ++summary.rejected;
+        break;
+      case FrameStatus::kLost:
+        ++summary.lost;
+        break;
+    }
+    if (std::optional<std::string> warning = gaps.Add(result); warning && on_warning)
+      on_warning(*warning);
     if (result.status != FrameStatus::kFirst) inlier_sum += result.inliers;
     summary.stage_seconds.features += result.times.features;
     summary.stage_seconds.matching += result.times.matching;
@@ -269,6 +291,11 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     summary.seconds = Since(start);
     if (on_frame) on_frame(result);
   }
+  if (std::optional<std::string> warning = gaps.Finish(); warning && on_warning)
+    on_warning(*warning);
+  summary.gaps = gaps.gaps();
+  summary.longest_gap_frames = gaps.longest_frames();
+  summary.longest_gap_seconds = gaps.longest_seconds();
   summary.mean_inliers = summary.frames > 1 ? inlier_sum / (summary.frames - 1) : 0.0;
   summary.seconds = Since(start);
   return summary;

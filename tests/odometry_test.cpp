@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "rgbdvo/synthetic.hpp"
 #include "test_support.hpp"
@@ -63,14 +65,38 @@ TEST_CASE("Odometry recovers a synthetic camera path") {
   CHECK(RigidNear(last.world_from_cam, path.back(), 1.0, 0.02));
 }
 
-TEST_CASE("A rejected frame keeps the last pose and the next frame matches the reference") {
+TEST_CASE("A frame without an estimate is reported at the constant-velocity prediction") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(4, 0.02, 1.0);
+  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  odometry.Process(Render(scene, cam, path[0], 0));
+  REQUIRE(odometry.Process(Render(scene, cam, path[1], 1)).status == FrameStatus::kAccepted);
+  Frame blank = Render(scene, cam, path[2], 2);
+  blank.bgr.setTo(cv::Scalar(128, 128, 128));  // no texture: no features, no matches
+  const FrameResult predicted = odometry.Process(blank);
+  CHECK(predicted.status == FrameStatus::kPredicted);
+  CHECK(predicted.StatusString().rfind("predicted:", 0) == 0);
+  CHECK_FALSE(HasEstimate(predicted.status));
+  // The smooth path's velocity changes little from frame to frame: the prediction is close.
+  CHECK(RigidNear(predicted.world_from_cam, path[2], 0.3, 0.005));
+  CHECK(TranslationError(predicted.world_from_cam, path[1]) > 0.01);  // not held
+  const FrameResult next = odometry.Process(Render(scene, cam, path[3], 3));
+  CHECK(next.status == FrameStatus::kAccepted);
+  CHECK(RigidNear(next.world_from_cam, path[3], 0.5, 0.01));
+}
+
+TEST_CASE("With predict_failed_frames off a rejected frame keeps the last pose (the paper)") {
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.0);
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  OdometryOptions options;
+  options.predict_failed_frames = false;
+  CHECK_FALSE(PresetOptions("paper").predict_failed_frames);
+  Odometry odometry(options, CalibFor(cam));
   odometry.Process(Render(scene, cam, path[0], 0));
   Frame blank = Render(scene, cam, path[1], 1);
-  blank.bgr.setTo(cv::Scalar(128, 128, 128));  // no texture: no features, no matches
+  blank.bgr.setTo(cv::Scalar(128, 128, 128));
   const FrameResult rejected = odometry.Process(blank);
   CHECK(rejected.status == FrameStatus::kRejected);
   CHECK(rejected.StatusString().rfind("rejected:", 0) == 0);
@@ -78,6 +104,40 @@ TEST_CASE("A rejected frame keeps the last pose and the next frame matches the r
   const FrameResult next = odometry.Process(Render(scene, cam, path[2], 2));
   CHECK(next.status == FrameStatus::kAccepted);
   CHECK(RigidNear(next.world_from_cam, path[2], 0.5, 0.01));
+}
+
+TEST_CASE("A burst of fast, blurred rotation is bridged and measured across") {
+  // 1 degree of yaw per frame, then 4 frames at 4 degrees per frame so blurred that SIFT finds
+  // no usable matches, then 1 degree per frame again. The blurred frames are predicted (moving
+  // on at the old velocity, flagged); the first sharp frame after them is matched against the
+  // last accepted one, 17 degrees back (the guided search, 12 degrees off, falls back to brute
+  // force), and lands on the truth, so the burst's motion is in the trajectory.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  std::vector<Rigid3d> path = {Rigid3d::Identity()};
+  for (int i = 1; i < 12; ++i) {
+    const double deg = (i >= 5 && i <= 8) ? 4.0 : 1.0;
+    Rigid3d step = Rigid3d::Identity();
+    step.linear() = Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d::UnitY()).matrix();
+    step.translation() = Eigen::Vector3d(0.005, 0, 0.002);
+    path.push_back(path.back() * step);
+  }
+  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    Frame f = Render(scene, cam, path[i], i);
+    const bool blurred = i >= 5 && i <= 8;
+    if (blurred) cv::GaussianBlur(f.bgr, f.bgr, cv::Size(0, 0), 25);
+    const FrameResult r = odometry.Process(f);
+    INFO("frame " << i << " " << r.StatusString() << " inliers " << r.inliers);
+    if (blurred) {
+      CHECK(r.status == FrameStatus::kPredicted);
+      continue;
+    }
+    REQUIRE(HasEstimate(r.status));
+    // Measured: at most 0.03 degrees and 1.6 mm off, before and after the burst.
+    CHECK(RigidNear(r.world_from_cam, path[i], 0.2, 0.005));
+    if (i == 9) CHECK(r.fallbacks >= 1);
+  }
 }
 
 TEST_CASE("After max_rejected_run rejections the odometry restarts and says lost") {
@@ -89,7 +149,7 @@ TEST_CASE("After max_rejected_run rejections the odometry restarts and says lost
   odometry.Process(Render(scene, cam, Rigid3d::Identity(), 0));
   Frame blank = Render(scene, cam, Rigid3d::Identity(), 1);
   blank.bgr.setTo(cv::Scalar(90, 90, 90));
-  CHECK(odometry.Process(blank).status == FrameStatus::kRejected);
+  CHECK(odometry.Process(blank).status == FrameStatus::kPredicted);
   const FrameResult lost = odometry.Process(blank);
   CHECK(lost.status == FrameStatus::kLost);
   CHECK(lost.StatusString().rfind("lost:", 0) == 0);

@@ -41,6 +41,10 @@ struct OdometryOptions {
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
   int max_rejected_run = 30;
+  // A frame whose motion cannot be estimated is reported at the constant-velocity prediction
+  // (status "predicted"), so a failure run does not freeze the trajectory; false = at the last
+  // accepted pose (status "rejected", the paper).
+  bool predict_failed_frames = true;
   // Use the calibration's lens distortion (dist_ir) when lifting pixels (the paper: no).
   bool undistort = true;
   uint32_t seed = 42;  // RANSAC random generator seed (fixed: runs are reproducible)
@@ -53,7 +57,13 @@ struct OdometryOptions {
 // pinhole model). Throws std::invalid_argument for another name.
 OdometryOptions PresetOptions(const std::string& name);
 
-enum class FrameStatus { kFirst, kAccepted, kRejected, kLost };
+// kAccepted: estimated against the keyframe. kRecovered: the keyframe failed, estimated against
+// the last accepted frame. kPredicted / kRejected: no estimate, reported at the prediction / at
+// the last accepted pose (predict_failed_frames). kLost: the references were given up here.
+enum class FrameStatus { kFirst, kAccepted, kRecovered, kPredicted, kRejected, kLost };
+
+// True for the statuses whose pose comes from an estimate of this frame (or the first frame).
+bool HasEstimate(FrameStatus status);
 
 // Seconds spent per stage for one frame (for bench/speed).
 struct StageTimes {
@@ -74,16 +84,18 @@ struct FrameResult {
   // keypoint to the current keypoint it was matched with, colour pixels.
   std::vector<float> prediction_error_px;
   FrameStatus status = FrameStatus::kFirst;
-  std::string reason;  // why rejected or lost, "" otherwise
+  std::string reason;  // why predicted, rejected or lost, "" otherwise
   StageTimes times;
-  // "first", "accepted", "rejected:<reason>" or "lost:<reason>" (no commas).
+  // "first", "accepted", "recovered", "predicted:<reason>", "rejected:<reason>" or
+  // "lost:<reason>" (no commas).
   std::string StatusString() const;
 };
 
-// Policy after a rejected frame: its pose is reported as the last accepted pose (status
-// rejected) and the next frame is matched against the reference again (the keyframe, then
-// the last accepted frame), never against the rejected one, so the motion across the rejected
-// frame is still measured, not lost.
+// Tracking policy. Each frame is matched against the keyframe (guided by the prediction, then
+// by brute force), then against the last accepted frame. When neither passes verification the
+// frame is reported at the constant-velocity prediction (or held, see predict_failed_frames)
+// and the next frame is matched against the same references, never against the failed one,
+// so the motion across the failure is still measured, not lost.
 class Odometry {
  public:
   Odometry(const OdometryOptions& options, const Calibration& calib);

@@ -43,4 +43,22 @@ RefineResult RefineMotion(const RefineOptions& options, double focal_px,
 double WhitenedError(const RefineOptions& options, double focal_px, const PointPair& pair,
                      const Rigid3d& prev_from_cur);
 
+// How much noisier the pairs named by `indices` are under prev_from_cur than the model says,
+// for the image and the depth part of the residual separately: the median whitened pixel error
+// over 1.177 (the median of a chi distribution with 2 degrees of freedom) and the median
+// absolute whitened depth error over 0.674 (the median of |N(0, 1)|), each at least 1. Motion
+// blur and the rolling shutter of a fast turn move keypoints by several pixels; depth taken up
+// to 20 ms before or after the colour image errs along the motion. A robust scale estimate (as
+// in M-estimation) lets the Huber threshold and the inlier test follow the frame's actual noise
+// instead of cutting the true matches away. {1, 1} when indices is empty.
+struct NoiseScale {
+  double pixel = 1, depth = 1;
+};
+NoiseScale EstimateNoiseScale(const RefineOptions& options, double focal_px,
+                              const std::vector<PointPair>& pairs, const std::vector<int>& indices,
+                              const Rigid3d& prev_from_cur);
+
+// The options with pixel_sigma and depth_noise_coeff multiplied by the scales.
+RefineOptions ScaleNoise(RefineOptions options, const NoiseScale& scale);
+
 }  // namespace rgbdvo

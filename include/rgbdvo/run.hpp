@@ -8,6 +8,7 @@
 
 #include "rgbdvo/frame_source.hpp"
 #include "rgbdvo/odometry.hpp"
+#include "rgbdvo/tracking_gaps.hpp"
 #include "rgbdvo/trajectory_writer.hpp"
 
 namespace rgbdvo {
@@ -50,8 +51,14 @@ struct ErrorHistogram {
 
 struct RunSummary {
   int frames = 0;
-  int accepted = 0;         // includes the first frame
-  int rejected = 0;         // rejected or lost
+  int accepted = 0;   // includes the first frame
+  int recovered = 0;  // estimated against the last accepted frame (FrameStatus)
+  int predicted = 0;  // no estimate: at the constant-velocity prediction
+  int rejected = 0;   // no estimate: held at the last pose (--preset paper)
+  int lost = 0;       // references given up
+  int gaps = 0;       // runs of frames without an estimate (TrackingGaps)
+  int longest_gap_frames = 0;
+  double longest_gap_seconds = 0;
   double mean_inliers = 0;  // over frames after the first
   double seconds = 0;       // wall time, decoding and writing included
   int threads = 1;          // as run
@@ -66,7 +73,8 @@ struct RunSummary {
   int frames_with_fallback = 0;
   // Prediction error of the final inliers of accepted frames (FrameResult::prediction_error_px).
   ErrorHistogram prediction_error_px;
-  std::string Brief() const;   // one line: frames, accepted, rejected, mean inliers, fps
+  // One line: frames, each status, the longest gap, mean inliers, fps.
+  std::string Brief() const;
   std::string Timing() const;  // one line: milliseconds per frame for each stage
   // One line: brute-force fallbacks and percentiles of the prediction error.
   std::string Matching() const;
@@ -79,6 +87,7 @@ struct RunSummary {
 RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
                        const std::vector<TrajectoryWriter*>& writers,
                        const std::function<void(const FrameResult&)>& on_frame = {},
-                       const RunOptions& options = {});
+                       const RunOptions& options = {},
+                       const std::function<void(const std::string&)>& on_warning = {});
 
 }  // namespace rgbdvo
