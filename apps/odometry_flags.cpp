@@ -103,6 +103,9 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
       "--max-rejected-run", [](O& o) -> int& { return o.max_rejected_run; },
       "after N rejected frames in a row restart from the current frame (0 = never)");
   AddSwitch(
+      "--depth-fallback", [](O& o) -> bool& { return o.depth_fallback; }, true,
+      "when features fail, align the depth images by ICP from the prediction (experimental)");
+  AddSwitch(
       "--no-predict", [](O& o) -> bool& { return o.predict_failed_frames; }, false,
       "report a frame without an estimate at the last pose (the paper), not the prediction");
   Add<uint32_t>(

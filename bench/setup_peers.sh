@@ -4,4 +4,4 @@
 # Usage: bench/setup_peers.sh [extra cmake args]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-RGBDVO_EXTRA_PACKAGES="libopencv-contrib-dev libopen3d-dev" scripts/setup.sh -DBUILD_BENCH_PEERS=ON "$@"
+RGBDVO_EXTRA_PACKAGES="libopen3d-dev" scripts/setup.sh -DBUILD_BENCH_PEERS=ON "$@"

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/depth_alignment.hpp"
 #include "rgbdvo/motion_prior.hpp"
 #include "rgbdvo/point_pairs.hpp"
 
@@ -42,6 +43,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.lifting.max_depth_jump_ratio = 0;    // depth at the nearest pixel
     o.guided_radius_px = 0;                // brute-force matching
     o.predict_failed_frames = false;       // a rejected frame keeps the last pose
+    o.depth_fallback = false;              // features only
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
@@ -76,14 +78,19 @@ std::string OdometryOptions::ToString() const {
     << "keyframe_inlier_ratio = " << keyframe_inlier_ratio << "\n"
     << "undistort = " << (undistort ? "true" : "false") << "\n"
     << "max_rejected_run = " << max_rejected_run << "\n"
+    << "depth_fallback = " << (depth_fallback ? "true" : "false") << "\n"
     << "predict_failed_frames = " << (predict_failed_frames ? "true" : "false") << "\n"
     << "seed = " << seed << "\n";
   return s.str();
 }
 
-bool HasEstimate(FrameStatus status) {
+bool HasFeatureEstimate(FrameStatus status) {
   return status == FrameStatus::kFirst || status == FrameStatus::kAccepted ||
          status == FrameStatus::kRecovered;
+}
+
+bool HasEstimate(FrameStatus status) {
+  return HasFeatureEstimate(status) || status == FrameStatus::kDepth;
 }
 
 std::string FrameResult::StatusString() const {
@@ -94,6 +101,8 @@ std::string FrameResult::StatusString() const {
       return "accepted";
     case FrameStatus::kRecovered:
       return "recovered";
+    case FrameStatus::kDepth:
+      return "icp:" + reason;
     case FrameStatus::kPredicted:
       return "predicted:" + reason;
     case FrameStatus::kRejected:
@@ -207,6 +216,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   cur.features = std::move(features);
   cur.frame = frame.index;
   cur.color_timestamp = frame.color_timestamp;
+  if (options_.depth_fallback) cur.depth_m = frame.depth_m.clone();
   r.times.lifting += Since(t0);
 
   if (!started_) {
@@ -244,19 +254,32 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   if (r.reason.empty()) {
     // world_from_cur = world_from_key * key_from_cur.
     cur.world_from_cam = key_.world_from_cam * motion.prev_from_cur;
-    cur.world_from_cam.linear() = NearestRotation(cur.world_from_cam.linear());
     if (key_.first_inliers < 0) key_.first_inliers = r.inliers;
-    if (!(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
-          options_.keyframe_inlier_ratio > 0))
-      key_ = cur;
-    world_from_before_ = last_.world_from_cam;
-    before_color_time_ = last_.color_timestamp;
-    has_before_ = true;
-    last_ = std::move(cur);
-    rejected_run_ = 0;
+    const bool new_keyframe = !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
+                                options_.keyframe_inlier_ratio > 0);
+    Advance(std::move(cur), new_keyframe);
     r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
     r.world_from_cam = last_.world_from_cam;
     return r;
+  }
+  if (options_.depth_fallback && !last_.depth_m.empty()) {
+    const auto t1 = std::chrono::steady_clock::now();
+    DepthAlignOptions d;
+    d.max_translation_m = options_.verify.max_translation_m;
+    d.max_rotation_deg = options_.verify.max_rotation_deg;
+    const DepthAlignResult aligned =
+        AlignDepth(d, calib_, last_.depth_m, cur.depth_m,
+                   last_.world_from_cam.inverse() * world_from_cur_pred);
+    r.times.ransac += Since(t1);
+    if (aligned.success) {
+      // The frame becomes the last estimated one; the keyframe stays (its sharp features are
+      // what the next frame is matched against first).
+      cur.world_from_cam = last_.world_from_cam * aligned.prev_from_cur;
+      Advance(std::move(cur), false);
+      r.status = FrameStatus::kDepth;
+      r.world_from_cam = last_.world_from_cam;
+      return r;
+    }
   }
   r.world_from_cam = options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
   r.world_from_cam.linear() = NearestRotation(r.world_from_cam.linear());
@@ -271,6 +294,16 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     r.status = options_.predict_failed_frames ? FrameStatus::kPredicted : FrameStatus::kRejected;
   }
   return r;
+}
+
+void Odometry::Advance(Reference cur, bool new_keyframe) {
+  cur.world_from_cam.linear() = NearestRotation(cur.world_from_cam.linear());
+  world_from_before_ = last_.world_from_cam;
+  before_color_time_ = last_.color_timestamp;
+  has_before_ = true;
+  if (new_keyframe) key_ = cur;
+  last_ = std::move(cur);
+  rejected_run_ = 0;
 }
 
 }  // namespace rgbdvo

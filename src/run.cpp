@@ -210,10 +210,10 @@ std::string RunSummary::Brief() const {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(1);
-  s << frames << " frames, " << accepted << " accepted, " << recovered << " recovered, "
-    << predicted << " predicted, " << rejected << " rejected, " << lost << " lost, longest gap "
-    << longest_gap_frames << " frames (" << std::setprecision(2) << longest_gap_seconds
-    << " s), mean inliers " << std::setprecision(1) << mean_inliers << ", "
+  s << frames << " frames, " << accepted << " accepted, " << recovered << " recovered, " << depth
+    << " icp, " << predicted << " predicted, " << rejected << " rejected, " << lost
+    << " lost, longest gap " << longest_gap_frames << " frames (" << std::setprecision(2)
+    << longest_gap_seconds << " s), mean inliers " << std::setprecision(1) << mean_inliers << ", "
     << (seconds > 0 ? frames / seconds : 0.0) << " fps";
   return s.str();
 }
@@ -266,6 +266,9 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
         break;
       case FrameStatus::kRecovered:
         ++summary.recovered;
+        break;
+      case FrameStatus::kDepth:
+        ++summary.depth;
         break;
       case FrameStatus::kPredicted:
         ++summary.predicted;

@@ -109,10 +109,11 @@ TEST_CASE("rgbdvo capture under fakenect: every frame, the true path, a faithful
   INFO(out);
   // End of the recording is a clean stop.
   REQUIRE(code == 0);
-  CHECK_THAT(out, Catch::Contains(
-                      "20 frames, 20 accepted, 0 recovered, 0 predicted, 0 rejected, 0 lost") &&
-                      Catch::Contains("0 dropped") &&
-                      Catch::Contains("stopped: end of the fakenect recording"));
+  CHECK_THAT(out,
+             Catch::Contains(
+                 "20 frames, 20 accepted, 0 recovered, 0 icp, 0 predicted, 0 rejected, 0 lost") &&
+                 Catch::Contains("0 dropped") &&
+                 Catch::Contains("stopped: end of the fakenect recording"));
   CHECK(Lines(dir + "/t.csv").size() == kFrames + 1);
 
   // Trajectory vs the IR camera's true path. Measured: 5.4 mm and 0.13 degrees at most over

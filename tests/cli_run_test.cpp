@@ -66,8 +66,9 @@ TEST_CASE("rgbdvo run on the real fr1/xyz excerpt follows the ground truth") {
                               &code);
   INFO(out);
   REQUIRE(code == 0);
-  CHECK_THAT(
-      out, Catch::Contains("30 frames, 30 accepted, 0 recovered, 0 predicted, 0 rejected, 0 lost"));
+  CHECK_THAT(out,
+             Catch::Contains(
+                 "30 frames, 30 accepted, 0 recovered, 0 icp, 0 predicted, 0 rejected, 0 lost"));
   CHECK_THAT(out, Catch::Contains("ransac.max_trials = 200"));  // configuration printed
   const std::vector<std::string> csv = Lines(dir + "/t.csv");
   REQUIRE(csv.size() == 31);

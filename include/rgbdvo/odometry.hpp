@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rgbdvo/calibration.hpp"
+#include "rgbdvo/depth_alignment.hpp"
 #include "rgbdvo/features.hpp"
 #include "rgbdvo/frame.hpp"
 #include "rgbdvo/geometry.hpp"
@@ -41,6 +42,11 @@ struct OdometryOptions {
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
   int max_rejected_run = 30;
+  // When the features give no verified motion, align the frame's depth image with the last
+  // estimated frame's by ICP, seeded by the prediction (status "icp"; see depth_alignment.hpp).
+  // Off by default: it bridges fr1/desk's fast turn at every 2nd frame but, unverified, goes
+  // wrong at every 3rd (see docs/benchmarks.md). false = features only (the paper).
+  bool depth_fallback = false;
   // A frame whose motion cannot be estimated is reported at the constant-velocity prediction
   // (status "predicted"), so a failure run does not freeze the trajectory; false = at the last
   // accepted pose (status "rejected", the paper).
@@ -58,11 +64,14 @@ struct OdometryOptions {
 OdometryOptions PresetOptions(const std::string& name);
 
 // kAccepted: estimated against the keyframe. kRecovered: the keyframe failed, estimated against
-// the last accepted frame. kPredicted / kRejected: no estimate, reported at the prediction / at
-// the last accepted pose (predict_failed_frames). kLost: the references were given up here.
-enum class FrameStatus { kFirst, kAccepted, kRecovered, kPredicted, kRejected, kLost };
+// the last accepted frame. kDepth: the features failed, the depth images aligned by ICP.
+// kPredicted / kRejected: no estimate, reported at the prediction / at the last accepted pose
+// (predict_failed_frames). kLost: the references were given up here.
+enum class FrameStatus { kFirst, kAccepted, kRecovered, kDepth, kPredicted, kRejected, kLost };
 
-// True for the statuses whose pose comes from an estimate of this frame (or the first frame).
+// True for the statuses whose pose comes from matched features (or the first frame).
+bool HasFeatureEstimate(FrameStatus status);
+// True for those and kDepth: the pose was measured, not predicted or held.
 bool HasEstimate(FrameStatus status);
 
 // Seconds spent per stage for one frame (for bench/speed).
@@ -84,18 +93,19 @@ struct FrameResult {
   // keypoint to the current keypoint it was matched with, colour pixels.
   std::vector<float> prediction_error_px;
   FrameStatus status = FrameStatus::kFirst;
-  std::string reason;  // why predicted, rejected or lost, "" otherwise
+  std::string reason;  // why the features failed (icp, predicted, rejected, lost), "" otherwise
   StageTimes times;
-  // "first", "accepted", "recovered", "predicted:<reason>", "rejected:<reason>" or
-  // "lost:<reason>" (no commas).
+  // "first", "accepted", "recovered", "icp:<reason>", "predicted:<reason>", "rejected:<reason>"
+  // or "lost:<reason>" (no commas); <reason> says why the features failed.
   std::string StatusString() const;
 };
 
 // Tracking policy. Each frame is matched against the keyframe (guided by the prediction, then
 // by brute force), then against the last accepted frame. When neither passes verification the
-// frame is reported at the constant-velocity prediction (or held, see predict_failed_frames)
-// and the next frame is matched against the same references, never against the failed one,
-// so the motion across the failure is still measured, not lost.
+// depth images are aligned (depth_fallback); when that fails too the frame is reported at the
+// constant-velocity prediction (or held, see predict_failed_frames) and the next frame is matched
+// against the same references, never against the failed one, so the motion across the failure is
+// still measured, not lost.
 class Odometry {
  public:
   Odometry(const OdometryOptions& options, const Calibration& calib);
@@ -110,6 +120,7 @@ class Odometry {
   struct Reference {
     Features features;
     KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once
+    cv::Mat depth_m;        // the depth image, for the depth fallback (empty without it)
     Rigid3d world_from_cam = Rigid3d::Identity();
     int frame = -1;
     double color_timestamp = 0;  // seconds (Frame::color_timestamp)
@@ -123,6 +134,9 @@ class Odometry {
   RansacResult EstimateFromMatches(const Reference& ref, const Reference& cur,
                                    const std::vector<cv::DMatch>& matches, FrameResult* r,
                                    std::vector<int>* match_of_pair);
+
+  // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy.
+  void Advance(Reference cur, bool new_keyframe);
 
   OdometryOptions options_;
   Calibration calib_;

@@ -53,10 +53,11 @@ struct RunSummary {
   int frames = 0;
   int accepted = 0;   // includes the first frame
   int recovered = 0;  // estimated against the last accepted frame (FrameStatus)
+  int depth = 0;      // features failed, depth images aligned by ICP
   int predicted = 0;  // no estimate: at the constant-velocity prediction
   int rejected = 0;   // no estimate: held at the last pose (--preset paper)
   int lost = 0;       // references given up
-  int gaps = 0;       // runs of frames without an estimate (TrackingGaps)
+  int gaps = 0;       // runs of frames without a feature estimate (TrackingGaps)
   int longest_gap_frames = 0;
   double longest_gap_seconds = 0;
   double mean_inliers = 0;  // over frames after the first

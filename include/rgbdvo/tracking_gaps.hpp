@@ -1,6 +1,6 @@
 #pragma once
-// Runs of frames without a motion estimate (predicted, rejected, lost): when they start and end,
-// and the longest, so that no failure goes unreported.
+// Runs of frames without a feature estimate (icp, predicted, rejected, lost): when they start
+// and end, and the longest, so that no failure goes unreported.
 
 #include <optional>
 #include <string>
@@ -12,8 +12,9 @@ namespace rgbdvo {
 class TrackingGaps {
  public:
   // Feeds the next frame's result (in frame order). Returns a one-line warning when a gap starts
-  // ("tracking failed at t=... (frame N): reason; reporting predicted poses") or ends
-  // ("tracking resumed at t=... (frame N) after K frames (S s) without an estimate").
+  // ("tracking failed at t=... (frame N): reason; reporting predicted poses", or what else
+  // carries the pose) or ends ("tracking resumed at t=... (frame N) after K frames (S s)
+  // without a feature estimate").
   std::optional<std::string> Add(const FrameResult& result);
   // A warning for a gap still open at the end of the sequence, if any.
   std::optional<std::string> Finish() const;
