@@ -1,6 +1,7 @@
 #include "rgbdvo/odometry.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -44,6 +45,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.guided_radius_px = 0;                // brute-force matching
     o.predict_failed_frames = false;       // a rejected frame keeps the last pose
     o.depth_fallback = false;              // features only
+    o.compensate_depth_delay = false;      // depth at the keypoint's own pixel
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
@@ -76,6 +78,7 @@ std::string OdometryOptions::ToString() const {
     << "refine.huber_sigmas = " << refine.huber_sigmas << "\n"
     << "refine.inlier_sigmas = " << refine.inlier_sigmas << "\n"
     << "keyframe_inlier_ratio = " << keyframe_inlier_ratio << "\n"
+    << "compensate_depth_delay = " << (compensate_depth_delay ? "true" : "false") << "\n"
     << "undistort = " << (undistort ? "true" : "false") << "\n"
     << "max_rejected_run = " << max_rejected_run << "\n"
     << "depth_fallback = " << (depth_fallback ? "true" : "false") << "\n"
@@ -210,14 +213,43 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   r.frame = frame.index;
   r.timestamp = frame.timestamp;
   r.features = static_cast<int>(features.size());
+
+  // The motion prior: constant velocity from the last two accepted frames (none yet: zero),
+  // timed by the colour images, where the keypoints are seen. (The depth images' times are
+  // irregular: two colour frames can share one depth frame. Measured on fr1/xyz with brute-force
+  // matching, prediction error of the final inliers at the 99th percentile / max: 8.5 / 16.0 px
+  // with the colour times, 9.1 / 19.8 px with the depth times.)
+  const bool moving = started_ && has_before_ && last_.color_timestamp > before_color_time_;
+  const Rigid3d world_from_cur_pred =
+      moving ? PredictConstantVelocity(world_from_before_, before_color_time_, last_.world_from_cam,
+                                       last_.color_timestamp, frame.color_timestamp)
+             : last_.world_from_cam;
+  // The camera's motion from the colour image's time to the depth image's, at that velocity,
+  // when the offset is within the interval the velocity was measured over (beyond it, the
+  // timestamps are not to be trusted for extrapolation).
+  Rigid3d depth_from_color = Rigid3d::Identity();
+  const double depth_delay = frame.timestamp - frame.color_timestamp;
+  if (moving && options_.compensate_depth_delay) {
+    const double span = last_.color_timestamp - before_color_time_;
+    if (std::abs(depth_delay) <= span)
+      depth_from_color =
+          ScaleMotion(world_from_before_.inverse() * last_.world_from_cam, depth_delay / span)
+              .inverse();
+  }
+
   const auto t0 = std::chrono::steady_clock::now();
   Reference cur;
-  cur.points = LiftKeypoints(calib_, options_.lifting, frame.depth_m, features);
+  cur.points =
+      LiftKeypointsAcrossTime(calib_, options_.lifting, frame.depth_m, features, depth_from_color);
   cur.features = std::move(features);
   cur.frame = frame.index;
   cur.color_timestamp = frame.color_timestamp;
   if (options_.depth_fallback) cur.depth_m = frame.depth_m.clone();
   r.times.lifting += Since(t0);
+
+  // The points, and so the estimated poses, are at the colour image's time; the reported pose is
+  // at the depth image's time (Frame::timestamp), moved there at the predicted velocity.
+  const Rigid3d color_from_depth = depth_from_color.inverse();
 
   if (!started_) {
     started_ = true;
@@ -227,16 +259,6 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     return r;
   }
 
-  // The motion prior: constant velocity from the last two accepted frames (none yet: zero),
-  // timed by the colour images, where the keypoints are seen. (The depth images' times are
-  // irregular: two colour frames can share one depth frame. Measured on fr1/xyz with brute-force
-  // matching, prediction error of the final inliers at the 99th percentile / max: 8.5 / 16.0 px
-  // with the colour times, 9.1 / 19.8 px with the depth times.)
-  const Rigid3d world_from_cur_pred =
-      has_before_
-          ? PredictConstantVelocity(world_from_before_, before_color_time_, last_.world_from_cam,
-                                    last_.color_timestamp, cur.color_timestamp)
-          : last_.world_from_cam;
   RansacResult motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
   bool recovered = false;
   if (!r.reason.empty() && last_.frame != key_.frame) {
@@ -259,7 +281,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
                                 options_.keyframe_inlier_ratio > 0);
     Advance(std::move(cur), new_keyframe);
     r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
-    r.world_from_cam = last_.world_from_cam;
+    r.world_from_cam = last_.world_from_cam * color_from_depth;
     return r;
   }
   if (options_.depth_fallback && !last_.depth_m.empty()) {
@@ -277,15 +299,18 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       cur.world_from_cam = last_.world_from_cam * aligned.prev_from_cur;
       Advance(std::move(cur), false);
       r.status = FrameStatus::kDepth;
-      r.world_from_cam = last_.world_from_cam;
+      r.world_from_cam = last_.world_from_cam * color_from_depth;
       return r;
     }
   }
-  r.world_from_cam = options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
-  r.world_from_cam.linear() = NearestRotation(r.world_from_cam.linear());
+  Rigid3d world_from_cur =
+      options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
+  world_from_cur.linear() = NearestRotation(world_from_cur.linear());
+  r.world_from_cam =
+      options_.predict_failed_frames ? world_from_cur * color_from_depth : world_from_cur;
   if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run) {
     // The references are out of reach: restart from this frame at the pose just reported.
-    cur.world_from_cam = r.world_from_cam;
+    cur.world_from_cam = world_from_cur;
     key_ = last_ = std::move(cur);
     has_before_ = false;
     rejected_run_ = 0;

@@ -21,6 +21,37 @@ KeypointPoints LiftKeypoints(const Calibration& calib, const LiftOptions& option
   return points;
 }
 
+KeypointPoints LiftKeypointsAcrossTime(const Calibration& calib, const LiftOptions& options,
+                                       const cv::Mat& depth_m, const Features& features,
+                                       const Rigid3d& depth_from_color) {
+  if (depth_from_color.matrix().isIdentity(0))
+    return LiftKeypoints(calib, options, depth_m, features);
+  const Rigid3d color_from_depth = depth_from_color.inverse();
+  const auto lift_at =
+      [&](const Eigen::Vector3d& p_in_depth_cam) -> std::optional<Eigen::Vector3d> {
+    if (!(p_in_depth_cam.z() > 0)) return std::nullopt;
+    const Eigen::Vector2d uv = IrToColor(calib, ProjectIr(calib, p_in_depth_cam));
+    if (!uv.allFinite()) return std::nullopt;
+    return LiftColorPixel(calib, depth_m, uv, options.max_depth_jump_ratio);
+  };
+  KeypointPoints points;
+  points.reserve(features.size());
+  for (const cv::KeyPoint& k : features.keypoints) {
+    const Eigen::Vector2d xy = NormalizeIr(calib, ColorToIr(calib, {k.pt.x, k.pt.y}));
+    const Eigen::Vector3d ray(xy.x(), xy.y(), 1.0);  // in the colour-time camera
+    std::optional<Eigen::Vector3d> p = lift_at(depth_from_color.linear() * ray);
+    if (p) {
+      // The depth found puts the point at Z = z_c in the colour-time camera; move it with the
+      // whole motion, translation included, and look again.
+      const double z_c = (color_from_depth * *p).z();
+      if (z_c > 0) p = lift_at(depth_from_color * (z_c * ray));
+    }
+    if (p) p = color_from_depth * *p;
+    points.push_back(p);
+  }
+  return points;
+}
+
 std::vector<PointPair> PairMatches(const KeypointPoints& prev_points,
                                    const KeypointPoints& cur_points,
                                    const std::vector<cv::DMatch>& matches,

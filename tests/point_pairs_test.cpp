@@ -1,6 +1,8 @@
 #include "rgbdvo/point_pairs.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "rgbdvo/camera.hpp"
 #include "rgbdvo/matching.hpp"
@@ -71,4 +73,53 @@ TEST_CASE("Lifting every keypoint once gives the same pairs as lifting each matc
       CHECK(*LiftColorPixel(calib, depth_prev, {a.x, a.y}, jump) == got[k].p_prev);
     }
   }
+}
+
+TEST_CASE("Lifting across time with the identity is plain lifting") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const Calibration calib = CalibFor(cam);
+  const SiftExtractor sift{FeatureOptions{}};
+  const Features f = sift.Extract(scene.RenderColor(cam, Rigid3d::Identity()));
+  const cv::Mat depth = scene.RenderDepth(cam, Rigid3d::Identity());
+  REQUIRE(f.size() > 100);
+  CHECK(LiftKeypointsAcrossTime(calib, LiftOptions{}, depth, f, Rigid3d::Identity()) ==
+        LiftKeypoints(calib, LiftOptions{}, depth, f));
+}
+
+TEST_CASE("Depth taken 15 ms after the colour image in a fast turn is read where the point is") {
+  // Colour at the identity, depth 15 ms later in a turn of 90 degrees per second (1.35 degrees,
+  // about 12 px) with 0.5 m/s sideways. Lifted at the keypoint's own pixel, the depth belongs to
+  // another surface point; moved by the motion, it gives the colour-time point (measured median
+  // error on the exactly rendered scene: 3.2 cm plain, below a micrometre moved).
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const Calibration calib = CalibFor(cam);
+  Rigid3d color_from_depth = Rigid3d::Identity();
+  color_from_depth.linear() =
+      Eigen::AngleAxisd(1.35 * M_PI / 180, Eigen::Vector3d(0.2, 1, 0).normalized()).matrix();
+  color_from_depth.translation() = Eigen::Vector3d(0.0075, 0, 0);
+  const SiftExtractor sift{FeatureOptions{}};
+  const Features f = sift.Extract(scene.RenderColor(cam, Rigid3d::Identity()));
+  const cv::Mat depth_then = scene.RenderDepth(cam, color_from_depth);  // world = colour camera
+  const KeypointPoints truth =
+      LiftKeypoints(calib, LiftOptions{}, scene.RenderDepth(cam, Rigid3d::Identity()), f);
+  const KeypointPoints plain = LiftKeypoints(calib, LiftOptions{}, depth_then, f);
+  const KeypointPoints moved =
+      LiftKeypointsAcrossTime(calib, LiftOptions{}, depth_then, f, color_from_depth.inverse());
+  std::vector<double> e_plain, e_moved;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (!truth[i]) continue;
+    if (plain[i]) e_plain.push_back((*plain[i] - *truth[i]).norm());
+    if (moved[i]) e_moved.push_back((*moved[i] - *truth[i]).norm());
+  }
+  REQUIRE(e_moved.size() > 0.9 * e_plain.size());
+  REQUIRE(e_plain.size() > 100);
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  INFO("median error plain " << median(e_plain) << " m, moved " << median(e_moved) << " m");
+  CHECK(median(e_plain) > 0.01);
+  CHECK(median(e_moved) < 0.001);
 }

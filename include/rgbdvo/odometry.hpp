@@ -51,6 +51,11 @@ struct OdometryOptions {
   // (status "predicted"), so a failure run does not freeze the trajectory; false = at the last
   // accepted pose (status "rejected", the paper).
   bool predict_failed_frames = true;
+  // The depth image may be taken up to half a frame before or after the colour image (TUM fr1:
+  // +-15 ms); in a fast turn the scene moves by several pixels meanwhile. Lift each keypoint
+  // where its point lies in the depth image, moved by the predicted velocity over the time
+  // difference (LiftKeypointsAcrossTime); false = at the same pixel (the paper).
+  bool compensate_depth_delay = true;
   // Use the calibration's lens distortion (dist_ir) when lifting pixels (the paper: no).
   bool undistort = true;
   uint32_t seed = 42;  // RANSAC random generator seed (fixed: runs are reproducible)

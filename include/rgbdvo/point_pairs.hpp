@@ -8,6 +8,7 @@
 
 #include "rgbdvo/calibration.hpp"
 #include "rgbdvo/features.hpp"
+#include "rgbdvo/geometry.hpp"
 
 namespace rgbdvo {
 
@@ -29,6 +30,17 @@ struct LiftOptions {
 using KeypointPoints = std::vector<std::optional<Eigen::Vector3d>>;
 KeypointPoints LiftKeypoints(const Calibration& calib, const LiftOptions& options,
                              const cv::Mat& depth_m, const Features& features);
+
+// As above for a depth image taken at another time than the colour image: depth_from_color
+// maps a point from the camera at the colour image's time into the camera at the depth
+// image's time (p_depth_cam = depth_from_color * p_color_cam). Each keypoint is moved to where the
+// point it sees lies in the depth image (rotation first, then once more with the depth found there,
+// for the translation's parallax) and lifted there; the point is returned in the camera at the
+// colour image's time, where the keypoints were seen. The identity gives LiftKeypoints above
+// exactly.
+KeypointPoints LiftKeypointsAcrossTime(const Calibration& calib, const LiftOptions& options,
+                                       const cv::Mat& depth_m, const Features& features,
+                                       const Rigid3d& depth_from_color);
 
 // The pairs of the matches whose two keypoints have a 3D point (queryIdx indexes prev_points,
 // trainIdx cur_points), in match order (the same pairs as lifting both keypoints of each match). If
