@@ -36,9 +36,8 @@ int Run(const RunArgs& a) {
   std::unique_ptr<FrameSource> source = OpenRecording(a.folder, a.source);
   if (auto* tum = dynamic_cast<TumSource*>(source.get()); tum && !tum->unpaired().empty()) {
     std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
-              << " rgb frames without a depth frame of their own within "
-              << a.source.tum.max_time_diff_s << " s (first: " << tum->unpaired().front().path
-              << ")\n";
+              << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
+              << " s (first: " << tum->unpaired().front().path << ")\n";
   }
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;

@@ -39,40 +39,6 @@ std::vector<TumListEntry> ReadTumList(const std::string& path) {
   return entries;
 }
 
-std::vector<std::pair<size_t, size_t>> AssociateOneToOne(const std::vector<TumListEntry>& rgb,
-                                                         const std::vector<TumListEntry>& depth,
-                                                         double max_dt_s) {
-  std::vector<size_t> by_time(depth.size());
-  for (size_t j = 0; j < depth.size(); ++j) by_time[j] = j;
-  std::sort(by_time.begin(), by_time.end(),
-            [&](size_t a, size_t b) { return depth[a].timestamp < depth[b].timestamp; });
-  struct Candidate {
-    double dt;
-    size_t i, j;
-  };
-  std::vector<Candidate> candidates;
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    const double t = rgb[i].timestamp;
-    auto it = std::lower_bound(by_time.begin(), by_time.end(), t - max_dt_s,
-                               [&](size_t j, double v) { return depth[j].timestamp < v; });
-    for (; it != by_time.end() && depth[*it].timestamp <= t + max_dt_s; ++it)
-      candidates.push_back({std::abs(depth[*it].timestamp - t), i, *it});
-  }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.dt < b.dt; });
-  std::vector<bool> rgb_used(rgb.size(), false), depth_used(depth.size(), false);
-  std::vector<std::pair<size_t, size_t>> pairs;
-  for (const Candidate& c : candidates) {
-    if (rgb_used[c.i] || depth_used[c.j]) continue;
-    rgb_used[c.i] = depth_used[c.j] = true;
-    pairs.emplace_back(c.i, c.j);
-  }
-  std::sort(pairs.begin(), pairs.end(), [&](const auto& a, const auto& b) {
-    return rgb[a.first].timestamp < rgb[b.first].timestamp;
-  });
-  return pairs;
-}
-
 bool IsTumFolder(const std::string& folder) {
   return fs::is_regular_file(fs::path(folder) / "rgb.txt") &&
          fs::is_regular_file(fs::path(folder) / "depth.txt");
@@ -86,14 +52,23 @@ TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
     if (!fs::is_regular_file(fs::path(folder) / list))
       throw std::runtime_error(folder + ": missing " + list + " (not a TUM RGB-D folder)");
   const std::vector<TumListEntry> rgb = ReadTumList((fs::path(folder) / "rgb.txt").string());
-  const std::vector<TumListEntry> depth = ReadTumList((fs::path(folder) / "depth.txt").string());
-  std::vector<bool> paired(rgb.size(), false);
-  for (const auto& [i, j] : AssociateOneToOne(rgb, depth, options_.max_time_diff_s)) {
-    pairs_.push_back({rgb[i], depth[j]});
-    paired[i] = true;
+  std::vector<TumListEntry> depth = ReadTumList((fs::path(folder) / "depth.txt").string());
+  std::sort(depth.begin(), depth.end(),
+            [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });
+  for (const TumListEntry& r : rgb) {
+    auto it = std::lower_bound(depth.begin(), depth.end(), r.timestamp,
+                               [](const TumListEntry& d, double t) { return d.timestamp < t; });
+    const TumListEntry* best = nullptr;
+    if (it != depth.end()) best = &*it;
+    if (it != depth.begin()) {
+      const TumListEntry* before = &*(it - 1);
+      if (!best || r.timestamp - before->timestamp < best->timestamp - r.timestamp) best = before;
+    }
+    if (best && std::abs(best->timestamp - r.timestamp) <= options_.max_time_diff_s)
+      pairs_.push_back({r, *best});
+    else
+      unpaired_.push_back(r);
   }
-  for (size_t i = 0; i < rgb.size(); ++i)
-    if (!paired[i]) unpaired_.push_back(rgb[i]);
   if (pairs_.empty())
     throw std::runtime_error(folder + ": empty sequence (" + std::to_string(rgb.size()) +
                              " rgb frames, none with a depth frame within " +
@@ -132,8 +107,7 @@ std::optional<Frame> TumSource::Next() {
 std::string TumSource::Describe() const {
   std::ostringstream s;
   s << "TUM RGB-D folder " << folder_ << ": " << pairs_.size() << " rgb-depth pairs within "
-    << options_.max_time_diff_s << " s (one to one), " << unpaired_.size()
-    << " rgb frames without a depth frame of their own, "
+    << options_.max_time_diff_s << " s, " << unpaired_.size() << " rgb frames without depth, "
     << "depth " << options_.depth_units_per_m << " units per metre";
   return s.str();
 }

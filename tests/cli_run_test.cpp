@@ -54,8 +54,7 @@ std::string SyntheticCalib(const std::string& dir) {
 }  // namespace
 
 TEST_CASE("rgbdvo run on the real fr1/xyz excerpt follows the ground truth") {
-  // Measured: 26 frames (4 of the 30 colour frames have no depth frame of their own), all
-  // accepted; largest position error relative to the first frame
+  // Measured: 30 frames, all accepted; largest position error relative to the first frame
   // 1.2 cm with the default preset (2.6 cm with --preset paper) over a 35 cm path (1 s).
   // The bound, 5 cm, covers both presets and leaves room for floating-point
   // differences in SIFT across machines; the camera moves more than that from its start
@@ -70,15 +69,16 @@ TEST_CASE("rgbdvo run on the real fr1/xyz excerpt follows the ground truth") {
   REQUIRE(code == 0);
   CHECK_THAT(out,
              Catch::Contains(
-                 "26 frames, 26 accepted, 0 recovered, 0 icp, 0 predicted, 0 rejected, 0 lost"));
+                 "30 frames, 30 accepted, 0 recovered, 0 icp, 0 predicted, 0 rejected, 0 lost"));
   CHECK_THAT(out, Catch::Contains("ransac.max_trials = 200"));  // configuration printed
   const std::vector<std::string> csv = Lines(dir + "/t.csv");
-  REQUIRE(csv.size() == 27);
+  REQUIRE(csv.size() == 31);
   CHECK(csv[0] == "frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status");
   const auto est = ReadTrajectory(dir + "/t.txt").poses;
   const auto gt = ReadTrajectory(data + "/groundtruth.txt").poses;
-  // Depth-time stamps, distinct since colour and depth frames are paired one to one.
-  REQUIRE(est.size() == 26);
+  // Depth-time stamps: 30 rows, but colour frames sharing a depth frame share a timestamp
+  // (5 of 30 here), and only the last of those is kept, as the TUM tools do.
+  REQUIRE(est.size() >= 20);
   const Rigid3d gt0_inv = Nearest(gt, est.front().timestamp).world_from_cam.inverse();
   double max_err = 0, max_motion = 0;
   for (const StampedPose& e : est) {
@@ -92,11 +92,10 @@ TEST_CASE("rgbdvo run on the real fr1/xyz excerpt follows the ground truth") {
 }
 
 TEST_CASE("rgbdvo run carries the real fast turn of fr1/desk without a failed frame") {
-  // data/tum_fr1_desk_turn24: 24 colour frames (0.8 s) of fr1/desk's fast turn with motion
-  // blur, where the default before issue 12 rejected every frame from the 6th on; 20 of them
-  // have a depth frame of their own. Measured over RANSAC seeds 42 and 1-7: every frame
-  // estimated from features (1-4 'recovered'), ATE RMSE 0.017-0.029 m (--preset paper: 0.033
-  // m). Bound 0.04 m.
+  // data/tum_fr1_desk_turn24: 24 frames (0.8 s) of fr1/desk's fast turn with motion blur, where
+  // the default before issue 12 rejected every frame from the 6th on. Measured over RANSAC seeds
+  // 42 and 1-7: every frame estimated from features (0-1 of them 'recovered'), ATE RMSE
+  // 0.017-0.022 m (--preset paper: 0.036 m, one frame rejected). Bound 0.03 m.
   const std::string dir = MakeTempDir("turn");
   const std::string data = SourceDir() + "/data/tum_fr1_desk_turn24";
   int code = 0;
@@ -105,14 +104,14 @@ TEST_CASE("rgbdvo run carries the real fast turn of fr1/desk without a failed fr
           &code);
   INFO(out);
   REQUIRE(code == 0);
-  CHECK_THAT(out, Catch::Contains("20 frames, ") &&
+  CHECK_THAT(out, Catch::Contains("24 frames, ") &&
                       Catch::Contains(" 0 icp, 0 predicted, 0 rejected, 0 lost, longest gap 0"));
   const AteResult ate = ComputeAte(ReadTrajectory(data + "/groundtruth.txt").poses,
                                    ReadTrajectory(dir + "/t.txt").poses, EvaluationOptions{});
   INFO(ate.Brief());
   REQUIRE(ate.success);
-  CHECK(ate.matched == 20);
-  CHECK(ate.error_m.rmse < 0.04);
+  CHECK(ate.matched >= 15);
+  CHECK(ate.error_m.rmse < 0.03);
 }
 
 TEST_CASE("rgbdvo run: missing folder, list file and calibration are clear errors") {

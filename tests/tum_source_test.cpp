@@ -89,33 +89,3 @@ TEST_CASE("TumSource names unreadable, truncated and wrongly sized images") {
   TumSource missing(gone, TumSourceOptions{});
   CHECK_THROWS_WITH(missing.Next(), Catch::Contains("depth/0.png"));
 }
-
-TEST_CASE("TumSource pairs one to one: two colour frames never share a depth frame") {
-  // 1.033 and 1.000 are both nearest to depth 1.020; the closer pair (0.013 s) wins it, and 1.000
-  // has no other depth frame within 0.02 s, so it is skipped (as associate.py does).
-  const std::string dir = MakeFolder({1.000, 1.033, 1.066}, {1.020, 1.050, 1.070});
-  TumSource source(dir, TumSourceOptions{});
-  REQUIRE(source.size() == 2);
-  REQUIRE(source.unpaired().size() == 1);
-  CHECK(source.unpaired()[0].timestamp == 1.000);
-  auto f0 = source.Next();
-  REQUIRE(f0);
-  CHECK(f0->color_timestamp == 1.033);
-  CHECK(f0->timestamp == 1.020);
-  auto f1 = source.Next();
-  REQUIRE(f1);
-  CHECK(f1->color_timestamp == 1.066);
-  CHECK(f1->timestamp == 1.070);  // 0.004 s: closer than 1.050 (0.016 s)
-  CHECK_FALSE(source.Next());
-}
-
-TEST_CASE("One-to-one association takes the closest pairs first and keeps colour order") {
-  const std::vector<TumListEntry> rgb = {{2.00, "a"}, {1.00, "b"}, {1.04, "c"}};
-  const std::vector<TumListEntry> depth = {{1.03, "x"}, {1.01, "y"}, {2.015, "z"}};
-  const auto pairs = AssociateOneToOne(rgb, depth, 0.02);
-  REQUIRE(pairs.size() == 3);
-  CHECK(pairs[0] == std::make_pair<size_t, size_t>(1, 1));  // 1.00 - 1.01
-  CHECK(pairs[1] == std::make_pair<size_t, size_t>(2, 0));  // 1.04 - 1.03
-  CHECK(pairs[2] == std::make_pair<size_t, size_t>(0, 2));  // 2.00 - 2.015
-  CHECK(AssociateOneToOne(rgb, depth, 0.005).empty());
-}

@@ -2,7 +2,6 @@
 // TUM RGB-D folders: rgb.txt, depth.txt, rgb/*.png, depth/*.png (Sturm et al. 2012).
 
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "rgbdvo/frame_source.hpp"
@@ -25,14 +24,6 @@ struct TumListEntry {
 // Throws std::runtime_error naming the file and line for unreadable files or malformed lines.
 std::vector<TumListEntry> ReadTumList(const std::string& path);
 
-// Pairs colour and depth frames one to one as the TUM tools' associate.py does: of all pairs at
-// most max_dt_s apart, the closest first, each frame used at most once. Returns (rgb index,
-// depth index) in colour-time order. So no two colour frames share a depth frame, and the poses
-// (stamped with the depth image's time) have distinct timestamps.
-std::vector<std::pair<size_t, size_t>> AssociateOneToOne(const std::vector<TumListEntry>& rgb,
-                                                         const std::vector<TumListEntry>& depth,
-                                                         double max_dt_s);
-
 // True when `folder` has the TUM layout (rgb.txt and depth.txt).
 bool IsTumFolder(const std::string& folder);
 
@@ -44,8 +35,7 @@ class TumSource : public FrameSource {
   std::string Describe() const override;
 
   size_t size() const { return pairs_.size(); }
-  // Colour frames left without a depth frame of their own within the window (reported, then
-  // skipped).
+  // Colour frames with no depth frame within the window (reported, then skipped).
   const std::vector<TumListEntry>& unpaired() const { return unpaired_; }
 
  private:
