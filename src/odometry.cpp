@@ -211,7 +211,10 @@ RansacResult Odometry::Estimate(const Reference& ref, const Reference& cur,
 FrameResult Odometry::Process(const Frame& frame, Features features) {
   FrameResult r;
   r.frame = frame.index;
-  r.timestamp = frame.timestamp;
+  // The pose is the camera's at the colour image's time: the keypoints are seen then, and their
+  // points are lifted into that camera (below). Colour times are also distinct, where two colour
+  // frames can share one depth frame and its time.
+  r.timestamp = frame.color_timestamp;
   r.features = static_cast<int>(features.size());
 
   // The motion prior: constant velocity from the last two accepted frames (none yet: zero),
@@ -247,10 +250,6 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   if (options_.depth_fallback) cur.depth_m = frame.depth_m.clone();
   r.times.lifting += Since(t0);
 
-  // The points, and so the estimated poses, are at the colour image's time; the reported pose is
-  // at the depth image's time (Frame::timestamp), moved there at the predicted velocity.
-  const Rigid3d color_from_depth = depth_from_color.inverse();
-
   if (!started_) {
     started_ = true;
     key_ = last_ = cur;
@@ -281,7 +280,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
                                 options_.keyframe_inlier_ratio > 0);
     Advance(std::move(cur), new_keyframe);
     r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
-    r.world_from_cam = last_.world_from_cam * color_from_depth;
+    r.world_from_cam = last_.world_from_cam;
     return r;
   }
   if (options_.depth_fallback && !last_.depth_m.empty()) {
@@ -299,15 +298,14 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       cur.world_from_cam = last_.world_from_cam * aligned.prev_from_cur;
       Advance(std::move(cur), false);
       r.status = FrameStatus::kDepth;
-      r.world_from_cam = last_.world_from_cam * color_from_depth;
+      r.world_from_cam = last_.world_from_cam;
       return r;
     }
   }
   Rigid3d world_from_cur =
       options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
   world_from_cur.linear() = NearestRotation(world_from_cur.linear());
-  r.world_from_cam =
-      options_.predict_failed_frames ? world_from_cur * color_from_depth : world_from_cur;
+  r.world_from_cam = world_from_cur;
   if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run) {
     // The references are out of reach: restart from this frame at the pose just reported.
     cur.world_from_cam = world_from_cur;

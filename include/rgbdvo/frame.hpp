@@ -8,8 +8,9 @@ namespace rgbdvo {
 
 struct Frame {
   int index = 0;  // 0-based position in the sequence as delivered
-  // Seconds (source clock): the time of the depth image, since the 3D points, and so the pose,
-  // come from it. The colour image may have been taken a little earlier or later.
+  // Seconds (source clock): the time of the depth image. The colour image may have been taken a
+  // little earlier or later; the odometry lifts its keypoints across the difference and stamps
+  // the pose with the colour image's time (FrameResult::timestamp).
   double timestamp = 0;
   double color_timestamp = 0;  // seconds, the colour image's time
   cv::Mat bgr;                 // CV_8UC3 colour image

@@ -86,7 +86,7 @@ struct StageTimes {
 
 struct FrameResult {
   int frame = 0;
-  double timestamp = 0;
+  double timestamp = 0;  // seconds: the colour image's time (Frame::color_timestamp)
   Rigid3d world_from_cam = Rigid3d::Identity();
   int features = 0;
   int matches = 0;
