@@ -22,6 +22,20 @@ Frame Render(const SyntheticScene& scene, const PinholeCamera& cam, const Rigid3
   return f;
 }
 
+// n poses turning 1 degree of yaw per frame (and moving 5 mm sideways, 2 mm forward), except
+// frames first..last, which turn burst_deg each.
+std::vector<Rigid3d> YawBurstPath(int n, int first, int last, double burst_deg) {
+  std::vector<Rigid3d> path = {Rigid3d::Identity()};
+  for (int i = 1; i < n; ++i) {
+    const double deg = (i >= first && i <= last) ? burst_deg : 1.0;
+    Rigid3d step = Rigid3d::Identity();
+    step.linear() = Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d::UnitY()).matrix();
+    step.translation() = Eigen::Vector3d(0.005, 0, 0.002);
+    path.push_back(path.back() * step);
+  }
+  return path;
+}
+
 }  // namespace
 
 TEST_CASE("A frame against itself gives the identity") {
@@ -114,14 +128,7 @@ TEST_CASE("A burst of fast, blurred rotation is bridged and measured across") {
   // force), and lands on the truth, so the burst's motion is in the trajectory.
   const SyntheticScene scene;
   const PinholeCamera cam;
-  std::vector<Rigid3d> path = {Rigid3d::Identity()};
-  for (int i = 1; i < 12; ++i) {
-    const double deg = (i >= 5 && i <= 8) ? 4.0 : 1.0;
-    Rigid3d step = Rigid3d::Identity();
-    step.linear() = Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d::UnitY()).matrix();
-    step.translation() = Eigen::Vector3d(0.005, 0, 0.002);
-    path.push_back(path.back() * step);
-  }
+  const std::vector<Rigid3d> path = YawBurstPath(12, 5, 8, 4.0);
   Odometry odometry(OdometryOptions{}, CalibFor(cam));
   for (int i = 0; i < static_cast<int>(path.size()); ++i) {
     Frame f = Render(scene, cam, path[i], i);
@@ -219,15 +226,7 @@ TEST_CASE("With the depth fallback the blurred frames of a burst are aligned by 
   // by the prediction: the rendered depth is exact, so ICP lands on the truth.
   const SyntheticScene scene;
   const PinholeCamera cam;
-  std::vector<Rigid3d> path = {Rigid3d::Identity()};
-  for (int i = 1; i < 10; ++i) {
-    Rigid3d step = Rigid3d::Identity();
-    step.linear() =
-        Eigen::AngleAxisd((i >= 5 && i <= 7 ? 3.0 : 1.0) * M_PI / 180, Eigen::Vector3d::UnitY())
-            .matrix();
-    step.translation() = Eigen::Vector3d(0.005, 0, 0.002);
-    path.push_back(path.back() * step);
-  }
+  const std::vector<Rigid3d> path = YawBurstPath(10, 5, 7, 3.0);
   OdometryOptions options;
   options.depth_fallback = true;
   Odometry odometry(options, CalibFor(cam));
