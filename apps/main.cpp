@@ -6,6 +6,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"rgbdvo: visual odometry for Kinect-style RGB-D cameras (Fiala & Ufkes 2011)"};
+  app.set_version_flag("--version", "rgbdvo " RGBDVO_VERSION);
   app.require_subcommand(1);
   rgbdvo::cli::AddRunCommand(app);
   rgbdvo::cli::AddCalibrateCommand(app);
@@ -16,7 +17,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; a bad command line exits 2, as getopt-based tools do.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const std::exception& e) {
     std::cerr << "rgbdvo: error: " << e.what() << std::endl;
     return 1;

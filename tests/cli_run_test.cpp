@@ -168,3 +168,13 @@ TEST_CASE("rgbdvo run: invalid parameter values are refused naming the parameter
   CHECK(code != 0);
   CHECK_THAT(out, Catch::Contains("inlier_distance_m"));
 }
+
+TEST_CASE("rgbdvo --version prints the version and a bad command line exits 2") {
+  std::string out;
+  CHECK(RunCommand(RgbdvoExe() + " --version", &out) == 0);
+  CHECK_THAT(out, Catch::StartsWith("rgbdvo ") && Catch::Contains("."));
+  CHECK(RunCommand(RgbdvoExe() + " run folder --calib c.yaml --no-such-flag", &out) == 2);
+  CHECK_THAT(out, Catch::Contains("no-such-flag"));
+  CHECK(RunCommand(RgbdvoExe(), &out) == 2);  // no subcommand
+  CHECK(RunCommand(RgbdvoExe() + " run --help", &out) == 0);
+}
