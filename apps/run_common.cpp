@@ -37,11 +37,11 @@ void LimitOpenCvThreads() {
 void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,
                         const Calibration& calib, const OdometryOptions& options,
                         const RunOptions& run) {
-  out << "# source: " << source << "\n# calibration: " << calib_path << " A=" << calib.A
-      << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D << " fx=" << calib.fx
-      << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy << " depth=["
-      << calib.min_depth_m << "," << calib.max_depth_m << "] m\n# threads: " << run.Describe()
-      << "\n";
+  out << "# rgbdvo " RGBDVO_VERSION "\n# source: " << source << "\n# calibration: " << calib_path
+      << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
+      << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
+      << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
+      << "] m\n# threads: " << run.Describe() << "\n";
   std::istringstream config(options.ToString());
   for (std::string line; std::getline(config, line);) out << "# " << line << "\n";
 }

@@ -71,6 +71,7 @@ TEST_CASE("rgbdvo run on the real fr1/xyz excerpt follows the ground truth") {
              Catch::Contains(
                  "30 frames, 30 accepted, 0 recovered, 0 icp, 0 predicted, 0 rejected, 0 lost"));
   CHECK_THAT(out, Catch::Contains("ransac.max_trials = 200"));  // configuration printed
+  CHECK_THAT(out, Catch::StartsWith("# rgbdvo ") || Catch::Contains("\n# rgbdvo "));
   const std::vector<std::string> csv = Lines(dir + "/t.csv");
   REQUIRE(csv.size() == 31);
   CHECK(csv[0] == "frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status");
