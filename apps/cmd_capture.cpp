@@ -86,10 +86,8 @@ int Capture(CaptureArgs& a) {
     if (a.frame_delay_ms > 0)
       std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
   };
-  const auto warn = [&](const std::string& w) {
-    std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: " << w << std::endl;
-  };
-  const RunSummary summary = RunOdometry(source, odometry, writer_ptrs, on_frame, a.run, warn);
+  const RunSummary summary =
+      RunOdometry(source, odometry, writer_ptrs, on_frame, a.run, PrintWarning(progress));
   if (progress) std::cerr << "\n";
   const CaptureStats stats = source.stats();
   std::cout << summary.Brief() << "; " << stats.Brief() << std::endl;

@@ -58,10 +58,7 @@ int Run(const RunArgs& a) {
         if (progress)
           std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
       },
-      a.run,
-      [&](const std::string& warning) {
-        std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: " << warning << std::endl;
-      });
+      a.run, PrintWarning(progress));
   if (progress) std::cerr << "\n";
   std::cout << summary.Brief() << std::endl;
   if (a.timing) std::cout << summary.Timing() << "\n" << summary.Matching() << std::endl;

@@ -1,5 +1,6 @@
 #include "run_common.hpp"
 
+#include <iostream>
 #include <opencv2/core/utility.hpp>
 #include <sstream>
 
@@ -32,6 +33,12 @@ void LimitOpenCvThreads() {
   // parallel loops (cvtColor and the like, inside each worker) would only add threads that
   // compete with them (fr1_xyz, 2 workers, 3 alternating runs each: 33.6 -> 34.1 fps).
   cv::setNumThreads(1);
+}
+
+std::function<void(const std::string&)> PrintWarning(bool progress) {
+  return [progress](const std::string& warning) {
+    std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: " << warning << std::endl;
+  };
 }
 
 void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,

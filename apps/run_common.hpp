@@ -3,6 +3,7 @@
 // header.
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -27,6 +28,10 @@ void AddThreadsFlag(CLI::App* cmd, RunOptions* options);
 // Turns OpenCV's own parallel loops off: our threads (one, or the feature workers) are the
 // parallelism.
 void LimitOpenCvThreads();
+
+// A run's on_warning: "rgbdvo: warning: ..." on stderr, on a fresh line when a progress line
+// (`progress`) is being redrawn there.
+std::function<void(const std::string&)> PrintWarning(bool progress);
 
 // The effective configuration as `# ` lines, so a run can be reproduced.
 void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,

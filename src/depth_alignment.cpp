@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <opencv2/core/eigen.hpp>
 #include <opencv2/rgbd.hpp>
 #include <stdexcept>
 
@@ -12,15 +13,6 @@ cv::Mat OdometryDepth(const cv::Mat& depth_m) {
   cv::Mat d = depth_m.clone();
   d.setTo(std::numeric_limits<float>::quiet_NaN(), depth_m <= 0);  // no reading: NaN for OpenCV
   return d;
-}
-
-cv::Mat ToCv(const Rigid3d& T) {
-  cv::Mat M = cv::Mat::eye(4, 4, CV_64F);
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) M.at<double>(r, c) = T.linear()(r, c);
-    M.at<double>(r, 3) = T.translation()(r);
-  }
-  return M;
 }
 
 }  // namespace
@@ -49,18 +41,17 @@ DepthAlignResult AlignDepth(const DepthAlignOptions& options, const Calibration&
   // compute(src, dst) gives Rt with p_dst = Rt * p_src (opencv2/rgbd/depth.hpp): src = current,
   // dst = previous frame, so Rt = prev_from_cur; the guess is its initial value.
   const cv::Mat empty_image, empty_mask;
-  cv::Mat Rt;
-  const bool ok =
-      icp->compute(empty_image, OdometryDepth(cur_depth_m), empty_mask, empty_image,
-                   OdometryDepth(prev_depth_m), empty_mask, Rt, ToCv(prev_from_cur_guess));
+  cv::Mat guess, Rt;
+  cv::eigen2cv(Eigen::Matrix4d(prev_from_cur_guess.matrix()), guess);
+  const bool ok = icp->compute(empty_image, OdometryDepth(cur_depth_m), empty_mask, empty_image,
+                               OdometryDepth(prev_depth_m), empty_mask, Rt, guess);
   if (!ok || Rt.empty()) {
     result.reason = "icp_failed";
     return result;
   }
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) result.prev_from_cur.linear()(r, c) = Rt.at<double>(r, c);
-    result.prev_from_cur.translation()(r) = Rt.at<double>(r, 3);
-  }
+  Eigen::Matrix4d M;
+  cv::cv2eigen(Rt, M);
+  result.prev_from_cur.matrix() = M;
   if (!result.prev_from_cur.matrix().allFinite()) {
     result.reason = "icp_not_finite";
     return result;

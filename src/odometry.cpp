@@ -222,7 +222,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   // irregular: two colour frames can share one depth frame. Measured on fr1/xyz with brute-force
   // matching, prediction error of the final inliers at the 99th percentile / max: 8.5 / 16.0 px
   // with the colour times, 9.1 / 19.8 px with the depth times.)
-  const bool moving = started_ && has_before_ && last_.color_timestamp > before_color_time_;
+  const bool moving = has_before_ && last_.color_timestamp > before_color_time_;
   const Rigid3d world_from_cur_pred =
       moving ? PredictConstantVelocity(world_from_before_, before_color_time_, last_.world_from_cam,
                                        last_.color_timestamp, frame.color_timestamp)

@@ -98,27 +98,37 @@ std::string RefineResult::Brief() const {
   return s.str();
 }
 
-double WhitenedError(const RefineOptions& o, double f, const PointPair& p, const Rigid3d& T) {
+namespace {
+
+// The whitened residuals of a pair in both directions (cur point seen from prev, prev point seen
+// from cur); false when either point falls behind the other camera.
+bool SymmetricResiduals(const RefineOptions& o, double f, const PointPair& p, const Rigid3d& T,
+                        Eigen::Vector3d* in_prev, Eigen::Vector3d* in_cur) {
   const Eigen::Vector3d q = T * p.p_cur;
   const Eigen::Vector3d s = T.linear().transpose() * (p.p_prev - T.translation());
-  if (q.z() <= 1e-6 || s.z() <= 1e-6) return std::numeric_limits<double>::infinity();
-  return std::max(Residual(o, f, q, p.p_prev, nullptr).norm(),
-                  Residual(o, f, s, p.p_cur, nullptr).norm());
+  if (q.z() <= 1e-6 || s.z() <= 1e-6) return false;
+  *in_prev = Residual(o, f, q, p.p_prev, nullptr);
+  *in_cur = Residual(o, f, s, p.p_cur, nullptr);
+  return true;
+}
+
+}  // namespace
+
+double WhitenedError(const RefineOptions& o, double f, const PointPair& p, const Rigid3d& T) {
+  Eigen::Vector3d a, b;
+  if (!SymmetricResiduals(o, f, p, T, &a, &b)) return std::numeric_limits<double>::infinity();
+  return std::max(a.norm(), b.norm());
 }
 
 NoiseScale EstimateNoiseScale(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
                               const std::vector<int>& idx, const Rigid3d& T) {
   std::vector<double> pixel, depth;
-  const Eigen::Matrix3d Rt = T.linear().transpose();
   for (int k : idx) {
-    const PointPair& p = pairs[k];
-    const Eigen::Vector3d q = T * p.p_cur;
-    const Eigen::Vector3d s = Rt * (p.p_prev - T.translation());
-    if (q.z() <= 1e-6 || s.z() <= 1e-6) continue;
-    for (const Eigen::Vector3d& r :
-         {Residual(o, f, q, p.p_prev, nullptr), Residual(o, f, s, p.p_cur, nullptr)}) {
-      pixel.push_back(r.head<2>().norm());
-      depth.push_back(std::abs(r.z()));
+    Eigen::Vector3d a, b;
+    if (!SymmetricResiduals(o, f, pairs[k], T, &a, &b)) continue;
+    for (const Eigen::Vector3d* r : {&a, &b}) {
+      pixel.push_back(r->head<2>().norm());
+      depth.push_back(std::abs(r->z()));
     }
   }
   NoiseScale scale;

@@ -14,6 +14,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "rgbdvo/tracking_gaps.hpp"
+
 namespace rgbdvo {
 namespace {
 
@@ -296,7 +298,6 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   }
   if (std::optional<std::string> warning = gaps.Finish(); warning && on_warning)
     on_warning(*warning);
-  summary.gaps = gaps.gaps();
   summary.longest_gap_frames = gaps.longest_frames();
   summary.longest_gap_seconds = gaps.longest_seconds();
   summary.mean_inliers = summary.frames > 1 ? inlier_sum / (summary.frames - 1) : 0.0;

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "rgbdvo/calibration.hpp"
-#include "rgbdvo/depth_alignment.hpp"
 #include "rgbdvo/features.hpp"
 #include "rgbdvo/frame.hpp"
 #include "rgbdvo/geometry.hpp"

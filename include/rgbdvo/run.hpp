@@ -8,7 +8,6 @@
 
 #include "rgbdvo/frame_source.hpp"
 #include "rgbdvo/odometry.hpp"
-#include "rgbdvo/tracking_gaps.hpp"
 #include "rgbdvo/trajectory_writer.hpp"
 
 namespace rgbdvo {
@@ -57,7 +56,6 @@ struct RunSummary {
   int predicted = 0;  // no estimate: at the constant-velocity prediction
   int rejected = 0;   // no estimate: held at the last pose (--preset paper)
   int lost = 0;       // references given up
-  int gaps = 0;       // runs of frames without a feature estimate (TrackingGaps)
   int longest_gap_frames = 0;
   double longest_gap_seconds = 0;
   double mean_inliers = 0;  // over frames after the first
