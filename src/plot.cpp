@@ -1,8 +1,11 @@
 #include "rgbdvo/plot.hpp"
 
+#include <fcntl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,20 +34,45 @@ const Panel kPanels[] = {
      [](const Eigen::Vector3d& p) { return Eigen::Vector2d(p.z(), -p.y()); }},
 };
 
-// A gnuplot double-quoted string (noenhanced text, so only quotes and backslashes matter).
+// A gnuplot single-quoted string: gnuplot expands nothing inside single quotes (no backquote
+// command substitution, no @macros, no backslash escapes), a quote is written twice, and control
+// characters (newlines end a command) become spaces. Our strings (paths, titles, reasons) thus
+// stay text, whatever a user or a recording's name puts in them.
 std::string Quoted(const std::string& s) {
-  std::string out = "\"";
+  std::string out = "'";
   for (const char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c != '\n') out += c;
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\'')
+      out += "''";
+    else
+      out += (byte < 0x20 || byte == 0x7f) ? ' ' : c;
   }
-  return out + "\"";
+  return out + "'";
 }
 
-std::string ShellQuoted(const std::string& s) {
-  std::string out = "'";
-  for (const char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+// Runs `program script` in `dir` with stderr into `err_path` and no shell in between: the
+// program's name and the paths reach exec() as they are. Returns the exit code, 127 when the
+// program cannot be started, -1 when it did not exit normally.
+int RunInFolder(const std::string& program, const fs::path& dir, const std::string& script,
+                const fs::path& err_path) {
+  // Everything the child needs is prepared before fork(): after it only async-signal-safe calls.
+  const std::string dir_s = dir.string(), err_s = err_path.string();
+  std::vector<char*> argv = {const_cast<char*>(program.c_str()), const_cast<char*>(script.c_str()),
+                             nullptr};
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("plot: cannot start " + program);
+  if (pid == 0) {
+    const int err = open(err_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int in = open("/dev/null", O_RDONLY);
+    if (err < 0 || in < 0 || dup2(err, 2) < 0 || dup2(in, 0) < 0 || chdir(dir_s.c_str()) != 0)
+      _exit(126);
+    execvp(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 void WritePoints(const fs::path& path, const std::vector<Eigen::Vector3d>& points) {
@@ -147,7 +175,7 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
   std::ostringstream gp;
   gp << std::setprecision(9) << "set terminal pngcairo noenhanced size " << options.width_px << ","
      << options.height_px << " font 'DejaVu Sans,13' linewidth 1.6\n"
-     << "set output " << Quoted(png_path) << "\n"
+     << "set output 'plot.png'\n"
      << "set multiplot\n"
      << "set label 1001 " << Quoted(title) << " at screen 0.5, screen 0.965 center font ',16'\n"
      << "set label 1002 " << Quoted(subtitle)
@@ -180,10 +208,9 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
        << "set yrange [" << mid.y() - span / 2 << ":" << mid.y() + span / 2 << "]\n";
     const std::string u = std::string(" using ") + panel.columns + " ";
     gp << "plot ";
-    if (!gt.empty()) gp << "'" << (tmp.path / "gt.dat").string() << "'" << u << gt_style << ", ";
-    gp << "'" << (tmp.path / "est.dat").string() << "'" << u << est_style << ", '"
-       << (tmp.path / "start.dat").string() << "'" << u << start_style << ", '"
-       << (tmp.path / "end.dat").string() << "'" << u << end_style << "\n"
+    if (!gt.empty()) gp << "'gt.dat'" << u << gt_style << ", ";
+    gp << "'est.dat'" << u << est_style << ", 'start.dat'" << u << start_style << ", 'end.dat'" << u
+       << end_style << "\n"
        << "unset label 1001\nunset label 1002\n";
   }
   // The legend: an empty full-width plot whose key is the only thing drawn.
@@ -200,29 +227,29 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
   {
     std::ofstream out(tmp.path / "plot.gp");
     out << gp.str();
+    if (!out) throw std::runtime_error((tmp.path / "plot.gp").string() + ": cannot write");
   }
-  std::error_code ec;
-  const fs::path parent = fs::path(png_path).parent_path();
-  if (!parent.empty()) fs::create_directories(parent, ec);  // failure shows below
-  fs::remove(png_path, ec);
-
-  const std::string command = ShellQuoted(options.gnuplot) + " " +
-                              ShellQuoted((tmp.path / "plot.gp").string()) + " 2> " +
-                              ShellQuoted((tmp.path / "err.txt").string());
-  const int status = std::system(command.c_str());
-  const int code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  // gnuplot writes into our temporary folder; the image is then copied to where the user asked,
+  // so the user's path never enters the script.
+  const int code = RunInFolder(options.gnuplot, tmp.path, "plot.gp", tmp.path / "err.txt");
   if (code == 127)
     throw std::runtime_error("plot: '" + options.gnuplot +
                              "' not found; install the Debian package gnuplot-nox "
                              "(scripts/setup.sh does)");
   if (code != 0) {
     std::string err = ReadAll(tmp.path / "err.txt");
-    err.erase(std::remove(err.begin(), err.end(), '\n'), err.end());
+    std::replace(err.begin(), err.end(), '\n', ' ');
     throw std::runtime_error("plot: " + options.gnuplot + " failed (exit " + std::to_string(code) +
                              ") writing " + png_path + ": " + err.substr(0, 300));
   }
-  if (!fs::exists(png_path, ec) || fs::file_size(png_path, ec) == 0)
+  std::error_code ec;
+  const fs::path image = tmp.path / "plot.png";
+  if (!fs::exists(image, ec) || fs::file_size(image, ec) == 0)
     throw std::runtime_error("plot: " + png_path + ": gnuplot wrote no image");
+  const fs::path parent = fs::path(png_path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);  // a failure shows in the copy
+  fs::copy_file(image, png_path, fs::copy_options::overwrite_existing, ec);
+  if (ec) throw std::runtime_error("plot: " + png_path + ": " + ec.message());
   return result;
 }
 

@@ -1,8 +1,10 @@
 // Trajectory figures through gnuplot.
 #include "rgbdvo/plot.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -77,4 +79,49 @@ TEST_CASE("PlotTrajectory: a missing gnuplot is a clear error") {
   CHECK_THROWS_WITH(
       PlotTrajectory(Circle(1, Rigid3d::Identity()), {}, MakeTempDir("plot") + "/c.png", options),
       Catch::Contains("/nonexistent/gnuplot") && Catch::Contains("gnuplot-nox"));
+}
+
+TEST_CASE("PlotTrajectory: hostile titles and paths run nothing and the plot is still written") {
+  const std::string dir = MakeTempDir("plot");
+  const std::string marker = dir + "/pwned";  // what an injected command would create
+  const std::string run = "touch " + marker;
+  const std::vector<std::string> hostile = {
+      "x`" + run + "`y",
+      "$(" + run + ")",
+      "q'uote\"s",
+      "line\nset output '" + dir + "/evil.png'",
+      "system(\"" + run + "\") and system('" + run + "')",
+      "@macro \\ back\\slash",
+  };
+  int k = 0;
+  for (const std::string& text : hostile) {
+    CAPTURE(text);
+    PlotOptions options;
+    options.title = text;
+    // The same text in a file name (a '/' would make it a folder: replaced).
+    std::string name = text;
+    std::replace(name.begin(), name.end(), '/', '_');
+    const std::string png = dir + "/" + std::to_string(k++) + name + ".png";
+    PlotTrajectory(Circle(1, Rigid3d::Identity()), {}, png, options);
+    CHECK(PngSize(png).first == options.width_px);
+    CHECK_FALSE(std::filesystem::exists(marker));
+    CHECK_FALSE(std::filesystem::exists(dir + "/evil.png"));
+  }
+}
+
+TEST_CASE("PlotTrajectory leaves no temporary files, also when gnuplot fails") {
+  const std::string tmp = MakeTempDir("plot_tmpdir"), out = MakeTempDir("plot");
+  const char* old = std::getenv("TMPDIR");
+  const std::string saved = old ? old : "";
+  setenv("TMPDIR", tmp.c_str(), 1);
+  PlotTrajectory(Circle(1, Rigid3d::Identity()), {}, out + "/a.png", {});
+  PlotOptions failing;
+  failing.gnuplot = "false";  // starts, exits 1
+  CHECK_THROWS_WITH(PlotTrajectory(Circle(1, Rigid3d::Identity()), {}, out + "/b.png", failing),
+                    Catch::Contains("failed (exit 1)") && Catch::Contains("b.png"));
+  if (old)
+    setenv("TMPDIR", saved.c_str(), 1);
+  else
+    unsetenv("TMPDIR");
+  CHECK(std::filesystem::is_empty(tmp));
 }
