@@ -1,8 +1,13 @@
 #include "rgbdvo/calibration.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <opencv2/core.hpp>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace rgbdvo {
 namespace {
@@ -16,6 +21,34 @@ double ReadNumber(const cv::FileStorage& fs, const std::string& key, const std::
   if (node.empty() || (!node.isReal() && !node.isInt()))
     throw std::runtime_error(path + ": missing or non-numeric field '" + key + "'");
   return static_cast<double>(node);
+}
+
+// The values of an opencv-matrix field (rows, cols, dt, data), read one by one after its shape
+// is checked against the expected one: OpenCV's own reader allocates rows x cols as the file
+// claims before it looks at the data.
+std::vector<double> ReadMatrix(const cv::FileStorage& fs, const std::string& key, int rows,
+                               int cols, const std::string& path) {
+  const std::string shape = std::to_string(rows) + "x" + std::to_string(cols);
+  const cv::FileNode node = fs[key];
+  const auto fail = [&](const std::string& why) {
+    return std::runtime_error(path + ": field '" + key + "' must be a " + shape +
+                              " opencv-matrix (" + why + ")");
+  };
+  if (!node.isMap()) throw fail("not a matrix");
+  const cv::FileNode r = node["rows"], c = node["cols"], data = node["data"];
+  if (!r.isInt() || !c.isInt()) throw fail("rows or cols missing");
+  const int file_rows = static_cast<int>(r), file_cols = static_cast<int>(c);
+  if (file_rows * int64_t{file_cols} != int64_t{rows} * cols ||
+      (file_rows != rows && file_rows != cols))
+    throw fail("it is " + std::to_string(file_rows) + "x" + std::to_string(file_cols));
+  if (!data.isSeq() || data.size() != static_cast<size_t>(rows) * cols)
+    throw fail("data must hold " + std::to_string(rows * cols) + " numbers");
+  std::vector<double> values;
+  for (const cv::FileNode& v : data) {
+    if (!v.isReal() && !v.isInt()) throw fail("data must be numbers");
+    values.push_back(static_cast<double>(v));
+  }
+  return values;
 }
 
 }  // namespace
@@ -32,6 +65,14 @@ void Calibration::Check() const {
 }
 
 Calibration LoadCalibration(const std::string& path) {
+  // A calibration is a page of text; a larger file is not one (and would be parsed whole).
+  constexpr std::uintmax_t kMaxBytes = 1 << 20;
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error(path + ": cannot open calibration file (" + ec.message() + ")");
+  if (bytes > kMaxBytes)
+    throw std::runtime_error(path + ": " + std::to_string(bytes) +
+                             " bytes, too large for a calibration file (at most 1 MiB)");
   cv::FileStorage fs;
   try {
     fs.open(path, cv::FileStorage::READ);
@@ -44,21 +85,14 @@ Calibration LoadCalibration(const std::string& path) {
   c.B = ReadNumber(fs, "B", path);
   c.C = ReadNumber(fs, "C", path);
   c.D = ReadNumber(fs, "D", path);
-  cv::Mat K;
-  fs["K_ir"] >> K;
-  if (K.rows != 3 || K.cols != 3)
-    throw std::runtime_error(path + ": field 'K_ir' must be a 3x3 matrix");
-  K.convertTo(K, CV_64F);
-  c.fx = K.at<double>(0, 0);
-  c.fy = K.at<double>(1, 1);
-  c.cx = K.at<double>(0, 2);
-  c.cy = K.at<double>(1, 2);
+  const std::vector<double> K = ReadMatrix(fs, "K_ir", 3, 3, path);  // row-major
+  c.fx = K[0];
+  c.fy = K[4];
+  c.cx = K[2];
+  c.cy = K[5];
   if (!fs["dist_ir"].empty()) {
-    cv::Mat dist;
-    fs["dist_ir"] >> dist;
-    if (dist.total() != 5) throw std::runtime_error(path + ": field 'dist_ir' must have 5 values");
-    dist.convertTo(dist, CV_64F);
-    for (int i = 0; i < 5; ++i) c.dist_ir[i] = dist.at<double>(i);
+    const std::vector<double> dist = ReadMatrix(fs, "dist_ir", 1, 5, path);  // or 5x1
+    std::copy(dist.begin(), dist.end(), c.dist_ir.begin());
   }
   c.min_depth_m = ReadNumber(fs, "min_depth_m", path);
   c.max_depth_m = ReadNumber(fs, "max_depth_m", path);

@@ -12,6 +12,8 @@
 #include <cstring>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace rgbdvo {
 namespace {
@@ -189,10 +191,14 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
   const int bit_depth = ihdr[8], colour_type = ihdr[9];
   if (ihdr[10] != 0 || ihdr[11] != 0) return Fail("unknown compression or filter method");
   if (ihdr[12] != 0) return Fail("interlaced");
-  // libpng's and OpenCV's size limits are theirs to apply.
-  if (width == 0 || height == 0 || width > 1000000 || height > 1000000 ||
-      uint64_t{width} * height > (uint64_t{1} << 30))
-    return Fail("image size outside the handled range");
+  if (width == 0 || height == 0) return Fail("image size is zero");
+  if (width > kMaxImageSide || height > kMaxImageSide) {
+    PngDecodeResult r;
+    r.reason = "PNG header claims " + std::to_string(width) + "x" + std::to_string(height) +
+               " pixels, more than the " + std::to_string(kMaxImageSide) + " a side read here";
+    r.too_large = true;
+    return r;
+  }
   int channels_in = 0, channels_out = 0;
   if (bit_depth == 8 && colour_type == 2) {
     channels_in = channels_out = 3;
@@ -210,6 +216,11 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
   // checks, which must fill exactly height lines of one filter byte plus the samples.
   const size_t bpp = static_cast<size_t>(channels_in) * (bit_depth / 8);
   const size_t line = size_t{width} * bpp;
+  // Deflate expands at most 1032:1 (RFC 1951: a 258-byte match per 2 bits at best), so data this
+  // short cannot fill the image: refused before anything of the claimed size is allocated.
+  constexpr size_t kMaxInflateRatio = 1032;
+  if (size_t{height} * (line + 1) > kMaxInflateRatio * idat_total + kMaxInflateRatio)
+    return Fail("IDAT data too short for the image size");
   // Scratch buffers kept per thread: fresh ones would cost a page fault every 4 KiB.
   thread_local std::vector<uint8_t> joined, raw;
   const uint8_t* zdata = idat_data[0];
@@ -251,14 +262,23 @@ cv::Mat ReadImage(const std::string& path, int imread_flags) {
   if (FILE* f = std::fopen(path.c_str(), "rb")) {
     if (std::fseek(f, 0, SEEK_END) == 0) {
       const long size = std::ftell(f);
+      if (size > kMaxImageFileBytes) {
+        std::fclose(f);
+        throw std::runtime_error(path + ": " + std::to_string(size) + " bytes, more than the " +
+                                 std::to_string(kMaxImageFileBytes) + " an image file of at most " +
+                                 std::to_string(kMaxImageSide) + " pixels a side can need");
+      }
       if (size > 0 && std::fseek(f, 0, SEEK_SET) == 0) {
         bytes.resize(static_cast<size_t>(size));
         if (std::fread(bytes.data(), 1, bytes.size(), f) != bytes.size()) bytes.clear();
       }
     }
     std::fclose(f);
+  } else {
+    return cv::Mat();  // missing or unreadable: nothing for cv::imread to add but a log line
   }
   PngDecodeResult r = DecodePng(bytes, imread_flags);
+  if (r.too_large) throw std::runtime_error(path + ": " + r.reason);
   return r.success ? r.image : cv::imread(path, imread_flags);
 }
 

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -21,6 +23,7 @@ TEST_CASE("Calibration YAML round-trips every field") {
   c.min_depth_m = 0.6;
   c.max_depth_m = 4.5;
   c.description = "test sensor";
+  c.dist_ir = {0.26, -0.95, -0.005, 0.0026, 1.16};
   const std::string path = test::MakeTempDir("calib") + "/c.yaml";
   SaveCalibration(c, path);
   const Calibration r = LoadCalibration(path);
@@ -35,6 +38,7 @@ TEST_CASE("Calibration YAML round-trips every field") {
   CHECK(r.min_depth_m == c.min_depth_m);
   CHECK(r.max_depth_m == c.max_depth_m);
   CHECK(r.description == c.description);
+  CHECK(r.dist_ir == c.dist_ir);
 }
 
 TEST_CASE("Shipped calibration files load") {
@@ -65,4 +69,49 @@ TEST_CASE("Bad calibration files fail naming the file and field") {
   c = {};
   c.max_depth_m = c.min_depth_m;
   CHECK_THROWS_WITH(c.Check(), Catch::Contains("max_depth_m"));
+}
+
+TEST_CASE("Calibration matrices are checked against their shape before anything is allocated") {
+  const std::string dir = test::MakeTempDir("badcalib");
+  const std::string head = "%YAML:1.0\n---\nA: 1.\nB: 0.\nC: 1.\nD: 0.\n";
+  const std::string dist =
+      "dist_ir: !!opencv-matrix\n   rows: 1\n   cols: 5\n   dt: d\n"
+      "   data: [ 0., 0., 0., 0., 0. ]\n";
+  const std::string tail = "min_depth_m: 0.4\nmax_depth_m: 8.\n";
+  const auto matrix = [](const std::string& key, const std::string& rows, const std::string& cols,
+                         const std::string& data) {
+    return key + ": !!opencv-matrix\n   rows: " + rows + "\n   cols: " + cols +
+           "\n   dt: d\n   data: [ " + data + " ]\n";
+  };
+  const std::string k9 = "517.3, 0., 318.6, 0., 516.5, 255.3, 0., 0., 1.";
+  struct Case {
+    std::string name, yaml, expected;
+  };
+  const std::vector<Case> cases = {
+      // OpenCV's reader would allocate 8 * 2e9 * 2e9 bytes for these.
+      {"huge", head + matrix("K_ir", "2000000000", "2000000000", k9) + tail, "it is 2000000000x"},
+      {"wide", head + matrix("K_ir", "3", "1000000000", k9) + tail, "3x1000000000"},
+      {"negative", head + matrix("K_ir", "-3", "-3", k9) + tail, "it is -3x-3"},
+      {"short", head + matrix("K_ir", "3", "3", "1., 2.") + tail, "9 numbers"},
+      {"text", head + "K_ir: [ 1, 2 ]\n" + tail, "not a matrix"},
+      {"dist",
+       head + matrix("K_ir", "3", "3", k9) + matrix("dist_ir", "100000", "100000", "0.") + tail,
+       "'dist_ir' must be a 1x5"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const std::string path = dir + "/" + c.name + ".yaml";
+    std::ofstream(path) << c.yaml;
+    CHECK_THROWS_WITH(LoadCalibration(path),
+                      Catch::Contains(c.name + ".yaml") && Catch::Contains(c.expected));
+  }
+  // A 5x1 dist_ir is the same as 1x5.
+  const std::string column = dir + "/column.yaml";
+  std::ofstream(column) << head + matrix("K_ir", "3", "3", k9) +
+                               matrix("dist_ir", "5", "1", "0.1, 0.2, 0.3, 0.4, 0.5") + tail;
+  CHECK(LoadCalibration(column).dist_ir[4] == 0.5);
+  // A file far larger than any calibration is refused before it is parsed.
+  const std::string big = dir + "/big.yaml";
+  std::ofstream(big) << head << std::string(2 << 20, ' ') << "\n";
+  CHECK_THROWS_WITH(LoadCalibration(big), Catch::Contains("big.yaml") && Catch::Contains("1 MiB"));
 }

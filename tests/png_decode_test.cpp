@@ -194,3 +194,36 @@ TEST_CASE("DecodePng rejects a zlib stream that does not fill the image exactly"
   CHECK_FALSE(r.success);
   CHECK(r.reason == "zlib stream corrupt or of the wrong size");
 }
+
+TEST_CASE("ReadImage refuses a PNG claiming more pixels than any sensor before allocating them") {
+  const std::string dir = test::MakeTempDir("png_size");
+  // A valid header of 30000x30000 RGB (2.7 GB of samples) over a few bytes of data.
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'}, ihdr;
+  PutBigEndian32(ihdr, 30000);
+  PutBigEndian32(ihdr, 30000);
+  ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});
+  PutChunk(png, "IHDR", ihdr);
+  PutChunk(png, "IDAT", {0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01});
+  PutChunk(png, "IEND", {});
+  const std::string path = dir + "/huge.png";
+  WriteBytes(path, png);
+  const PngDecodeResult r = DecodePng(png, cv::IMREAD_COLOR);
+  CHECK(r.too_large);
+  CHECK_THROWS_WITH(ReadImage(path, cv::IMREAD_COLOR), Catch::Contains("huge.png") &&
+                                                           Catch::Contains("30000x30000") &&
+                                                           Catch::Contains("4096"));
+  // Within the limit but with far too little data for the size (deflate expands at most 1032:1):
+  // refused by the decoder, left to cv::imread, which finds it corrupt.
+  std::vector<uint8_t> short_png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  ihdr.clear();
+  PutBigEndian32(ihdr, 4000);
+  PutBigEndian32(ihdr, 4000);
+  ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});
+  PutChunk(short_png, "IHDR", ihdr);
+  PutChunk(short_png, "IDAT", {0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01});
+  PutChunk(short_png, "IEND", {});
+  const PngDecodeResult s = DecodePng(short_png, cv::IMREAD_COLOR);
+  CHECK_FALSE(s.success);
+  CHECK_FALSE(s.too_large);
+  CHECK_THAT(s.reason, Catch::Contains("too short"));
+}

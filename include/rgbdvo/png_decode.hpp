@@ -11,10 +11,18 @@
 
 namespace rgbdvo {
 
+// The largest image read, pixels a side: above every RGB-D sensor's (Kinect v1 colour 1280x1024,
+// Kinect v2 1920x1080, Azure Kinect 4096x3072). A file claiming more is refused before anything
+// of that size is allocated.
+constexpr uint32_t kMaxImageSide = 4096;
+// The largest image file read: 4096x4096 pixels of 16-bit RGBA, stored uncompressed.
+constexpr long kMaxImageFileBytes = 4096L * 4096 * 8 + (1L << 20);
+
 struct PngDecodeResult {
-  bool success = false;  // false: not decoded here (`reason`); cv::imread decides
-  std::string reason;    // why not, e.g. "interlaced", "IDAT CRC mismatch"
-  cv::Mat image;         // on success: what cv::imread(path, flags) returns
+  bool success = false;    // false: not decoded here (`reason`); cv::imread decides
+  bool too_large = false;  // the header claims more than kMaxImageSide: not for cv::imread either
+  std::string reason;      // why not, e.g. "interlaced", "IDAT CRC mismatch"
+  cv::Mat image;           // on success: what cv::imread(path, flags) returns
 };
 
 // Decodes the bytes of a PNG file as cv::imread(path, flags) would for flags cv::IMREAD_COLOR
@@ -26,7 +34,9 @@ struct PngDecodeResult {
 PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags);
 
 // cv::imread(path, flags) with DecodePng for the PNGs it handles: the same image, empty when the
-// file is missing, corrupt or truncated (then cv::imread itself has had the last word).
+// file is missing, corrupt or truncated (then cv::imread itself has had the last word). Throws
+// std::runtime_error naming the file and the limit for a file above kMaxImageFileBytes or a PNG
+// claiming more than kMaxImageSide pixels a side.
 cv::Mat ReadImage(const std::string& path, int imread_flags);
 
 }  // namespace rgbdvo
