@@ -103,8 +103,11 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
       "--max-rejected-run", [](O& o) -> int& { return o.max_rejected_run; },
       "after N rejected frames in a row restart from the current frame (0 = never)");
   AddSwitch(
+      "--no-depth-fallback", [](O& o) -> bool& { return o.depth_fallback; }, false,
+      "when features fail, report the prediction instead of aligning the depth images by ICP");
+  AddSwitch(
       "--depth-fallback", [](O& o) -> bool& { return o.depth_fallback; }, true,
-      "when features fail, align the depth images by ICP from the prediction (experimental)");
+      "when features fail, align the depth images by ICP (default; not in --preset paper)");
   AddSwitch(
       "--no-predict", [](O& o) -> bool& { return o.predict_failed_frames; }, false,
       "report a frame without an estimate at the last pose (the paper), not the prediction");

@@ -5,7 +5,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "rgbdvo/depth_alignment.hpp"
 #include "rgbdvo/motion_prior.hpp"
 #include "rgbdvo/point_pairs.hpp"
 
@@ -121,6 +120,13 @@ Odometry::Odometry(const OdometryOptions& options, const Calibration& calib)
   options_.Check();
   calib_.Check();
   if (!options_.undistort) calib_.dist_ir = {0, 0, 0, 0, 0};
+  if (options_.depth_fallback) {
+    DepthAlignOptions d;
+    d.max_translation_m = options_.verify.max_translation_m;
+    d.max_rotation_deg = options_.verify.max_rotation_deg;
+    d.depth_noise_coeff = options_.refine.depth_noise_coeff;
+    depth_aligner_ = std::make_unique<DepthAligner>(d, calib_);
+  }
 }
 
 FrameResult Odometry::Process(const Frame& frame) {
@@ -285,12 +291,8 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   }
   if (options_.depth_fallback && !last_.depth_m.empty()) {
     const auto t1 = std::chrono::steady_clock::now();
-    DepthAlignOptions d;
-    d.max_translation_m = options_.verify.max_translation_m;
-    d.max_rotation_deg = options_.verify.max_rotation_deg;
-    const DepthAlignResult aligned =
-        AlignDepth(d, calib_, last_.depth_m, cur.depth_m,
-                   last_.world_from_cam.inverse() * world_from_cur_pred);
+    const DepthAlignResult aligned = depth_aligner_->Align(
+        last_.depth_m, cur.depth_m, last_.world_from_cam.inverse() * world_from_cur_pred);
     r.times.ransac += Since(t1);
     if (aligned.success) {
       // The frame becomes the last estimated one; the keyframe stays (its sharp features are
@@ -301,6 +303,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       r.world_from_cam = last_.world_from_cam;
       return r;
     }
+    r.reason += "+" + aligned.reason;
   }
   Rigid3d world_from_cur =
       options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;

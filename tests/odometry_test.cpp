@@ -88,9 +88,11 @@ TEST_CASE("A frame without an estimate is reported at the constant-velocity pred
   REQUIRE(odometry.Process(Render(scene, cam, path[1], 1)).status == FrameStatus::kAccepted);
   Frame blank = Render(scene, cam, path[2], 2);
   blank.bgr.setTo(cv::Scalar(128, 128, 128));  // no texture: no features, no matches
+  blank.depth_m.setTo(0);                      // and no depth: nothing for ICP either
   const FrameResult predicted = odometry.Process(blank);
   CHECK(predicted.status == FrameStatus::kPredicted);
   CHECK(predicted.StatusString().rfind("predicted:", 0) == 0);
+  CHECK_THAT(predicted.reason, Catch::Contains("+icp_"));  // what the depth fallback found
   CHECK_FALSE(HasEstimate(predicted.status));
   // The smooth path's velocity changes little from frame to frame: the prediction is close.
   CHECK(RigidNear(predicted.world_from_cam, path[2], 0.3, 0.005));
@@ -106,7 +108,9 @@ TEST_CASE("With predict_failed_frames off a rejected frame keeps the last pose (
   const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.0);
   OdometryOptions options;
   options.predict_failed_frames = false;
+  options.depth_fallback = false;  // features only, as the paper
   CHECK_FALSE(PresetOptions("paper").predict_failed_frames);
+  CHECK_FALSE(PresetOptions("paper").depth_fallback);
   Odometry odometry(options, CalibFor(cam));
   odometry.Process(Render(scene, cam, path[0], 0));
   Frame blank = Render(scene, cam, path[1], 1);
@@ -122,14 +126,17 @@ TEST_CASE("With predict_failed_frames off a rejected frame keeps the last pose (
 
 TEST_CASE("A burst of fast, blurred rotation is bridged and measured across") {
   // 1 degree of yaw per frame, then 4 frames at 4 degrees per frame so blurred that SIFT finds
-  // no usable matches, then 1 degree per frame again. The blurred frames are predicted (moving
-  // on at the old velocity, flagged); the first sharp frame after them is matched against the
-  // last accepted one, 17 degrees back (the guided search, 12 degrees off, falls back to brute
-  // force), and lands on the truth, so the burst's motion is in the trajectory.
+  // no usable matches, then 1 degree per frame again. With features only, the blurred frames are
+  // predicted (moving on at the old velocity, flagged); the first sharp frame after them is
+  // matched against the last accepted one, 17 degrees back (the guided search, 12 degrees off,
+  // falls back to brute force), and lands on the truth, so the burst's motion is in the
+  // trajectory.
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = YawBurstPath(12, 5, 8, 4.0);
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  OdometryOptions options;
+  options.depth_fallback = false;
+  Odometry odometry(options, CalibFor(cam));
   for (int i = 0; i < static_cast<int>(path.size()); ++i) {
     Frame f = Render(scene, cam, path[i], i);
     const bool blurred = i >= 5 && i <= 8;
@@ -152,6 +159,7 @@ TEST_CASE("After max_rejected_run rejections the odometry restarts and says lost
   const PinholeCamera cam;
   OdometryOptions options;
   options.max_rejected_run = 2;
+  options.depth_fallback = false;  // the blank frames' depth would carry them
   Odometry odometry(options, CalibFor(cam));
   odometry.Process(Render(scene, cam, Rigid3d::Identity(), 0));
   Frame blank = Render(scene, cam, Rigid3d::Identity(), 1);
@@ -222,13 +230,13 @@ TEST_CASE("The paper preset matches by brute force") {
 }
 
 TEST_CASE("With the depth fallback the blurred frames of a burst are aligned by depth") {
-  // As above, but each blurred frame's depth is aligned with the last estimated frame's, seeded
-  // by the prediction: the rendered depth is exact, so ICP lands on the truth.
+  // As above, with the default depth fallback: each blurred frame's depth is aligned with the
+  // last estimated frame's; the rendered depth is exact, so ICP lands on the truth.
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = YawBurstPath(10, 5, 7, 3.0);
   OdometryOptions options;
-  options.depth_fallback = true;
+  REQUIRE(options.depth_fallback);  // the default
   Odometry odometry(options, CalibFor(cam));
   for (int i = 0; i < static_cast<int>(path.size()); ++i) {
     Frame f = Render(scene, cam, path[i], i);
