@@ -1,8 +1,6 @@
 // `rgbdvo capture`: visual odometry live from a Kinect v1 (libfreenect), optionally recording.
-#include <signal.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -17,15 +15,6 @@
 
 namespace rgbdvo::cli {
 namespace {
-
-// Set by the first Ctrl-C (SIGINT); a second one ends the process the default way.
-std::atomic<bool> g_stop{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "needed in a signal handler");
-
-extern "C" void OnSigint(int) {
-  g_stop = true;
-  signal(SIGINT, SIG_DFL);
-}
 
 struct CaptureArgs {
   std::string calib;
@@ -44,30 +33,23 @@ int Capture(CaptureArgs& a) {
   const Calibration calib = LoadCalibration(a.calib);
   a.kinect.drop_when_behind = !a.no_drop;
   a.kinect.record_accel = !a.no_accel;
-  a.kinect.stop = &g_stop;
+  a.kinect.stop = &StopOnSignals::Flag();
   a.kinect.Check();
   // Read no further ahead than the workers need: a backlog then waits in the source's queue,
   // where the oldest pair is dropped and counted (the newest frame wins).
   a.run.queue_frames = 1;
+  a.outputs.RefuseInputs({a.calib});
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
 
-  g_stop = false;
-  struct sigaction action = {};
-  action.sa_handler = OnSigint;
-  sigemptyset(&action.sa_mask);
-  struct sigaction previous = {};
-  sigaction(SIGINT, &action, &previous);
-  struct Restore {
-    struct sigaction* previous;
-    ~Restore() { sigaction(SIGINT, previous, nullptr); }
-  } restore{&previous};
+  // Ctrl-C (or SIGTERM from a supervisor) is how a capture ends: cleanly, exit 0.
+  const StopOnSignals stop_on_signals;
 
   KinectSource source(a.kinect);
   if (!a.quiet) {
     PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options, a.run);
-    std::cout << "# Ctrl-C stops cleanly" << std::endl;
+    std::cout << "# Ctrl-C (or SIGTERM) stops cleanly" << std::endl;
   }
   LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);

@@ -1,9 +1,12 @@
 // `rgbdvo run FOLDER`: visual odometry over a recorded folder.
+#include <signal.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 #include "commands.hpp"
 #include "rgbdvo/calibration.hpp"
@@ -19,6 +22,7 @@ struct RunArgs {
   std::string folder, calib, plot;
   TrajectoryOutputs outputs;
   bool quiet = false, timing = false;
+  int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
   RunOptions run;
   SourceOptions source;
   std::unique_ptr<OdometryFlags> odometry_flags;
@@ -39,6 +43,11 @@ int Run(const RunArgs& a) {
               << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
               << " s (first: " << tum->unpaired().front().path << ")\n";
   }
+  std::vector<std::string> inputs = {a.calib};
+  for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt",
+                           "INDEX.txt", "associations.txt"})
+    inputs.push_back((std::filesystem::path(a.folder) / name).string());
+  a.outputs.RefuseInputs(inputs);
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
@@ -52,15 +61,27 @@ int Run(const RunArgs& a) {
   LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
+  const StopOnSignals stop_on_signals;
+  StoppableSource stoppable(*source);
   const RunSummary summary = RunOdometry(
-      *source, odometry, writer_ptrs,
+      stoppable, odometry, writer_ptrs,
       [&](const FrameResult& r) {
         if (progress)
           std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
+        if (a.frame_delay_ms > 0)
+          std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
       },
       a.run, PrintWarning(progress));
   if (progress) std::cerr << "\n";
   std::cout << summary.Brief() << std::endl;
+  if (const int signo = StopOnSignals::Signal(); signo != 0) {
+    // Interrupted: what was computed is written; the exit code says the run is incomplete, as a
+    // shell reports a command ended by that signal.
+    std::cerr << "rgbdvo: interrupted by " << (signo == SIGINT ? "SIGINT" : "SIGTERM") << " after "
+              << summary.frames << " frames; every one of them is in the trajectory files"
+              << std::endl;
+    return 128 + signo;
+  }
   if (a.timing) std::cout << summary.Timing() << "\n" << summary.Matching() << std::endl;
   if (!a.plot.empty()) {  // with the folder's groundtruth.txt when it has one
     const std::string gt_path = (std::filesystem::path(a.folder) / "groundtruth.txt").string();
@@ -90,6 +111,10 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
   AddThreadsFlag(cmd, &args->run);
   cmd->add_flag("--timing", args->timing, "also print milliseconds per frame for each stage");
+  cmd->add_option("--debug-frame-delay-ms", args->frame_delay_ms,
+                  "for tests: sleep this long after each frame, as an odometry that much slower")
+      ->check(CLI::NonNegativeNumber)
+      ->group("");  // hidden from --help
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Run(*args);

@@ -16,6 +16,10 @@ int main(int argc, char** argv) {
   rgbdvo::cli::AddSynthKinectCommand(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    // A subcommand's own exit code (its message is already printed): 3 = Kinect lost,
+    // 128 + N = stopped by signal N.
+    return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; a bad command line exits 2, as getopt-based tools do.
     return app.exit(e) == 0 ? 0 : 2;

@@ -109,6 +109,9 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
       "--depth-fallback", [](O& o) -> bool& { return o.depth_fallback; }, true,
       "when features fail, align the depth images by ICP (default; not in --preset paper)");
   AddSwitch(
+      "--no-depth-delay", [](O& o) -> bool& { return o.compensate_depth_delay; }, false,
+      "read depth at the keypoint's own pixel, not moved over the colour-depth time offset");
+  AddSwitch(
       "--no-predict", [](O& o) -> bool& { return o.predict_failed_frames; }, false,
       "report a frame without an estimate at the last pose (the paper), not the prediction");
   Add<uint32_t>(

@@ -1,8 +1,12 @@
 #include "run_common.hpp"
 
+#include <signal.h>
+
+#include <filesystem>
 #include <iostream>
 #include <opencv2/core/utility.hpp>
 #include <sstream>
+#include <stdexcept>
 
 namespace rgbdvo::cli {
 
@@ -16,6 +20,26 @@ std::vector<std::unique_ptr<TrajectoryWriter>> TrajectoryOutputs::Open() const {
   if (!csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(csv));
   if (!tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(tum));
   return writers;
+}
+
+void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) const {
+  namespace fs = std::filesystem;
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+  };
+  for (const std::string* out : {&csv, &tum}) {
+    if (out->empty()) continue;
+    for (const std::string& in : inputs) {
+      std::error_code ec;
+      if (fs::exists(in, ec) && same(*out, in))
+        throw std::runtime_error(*out + ": is an input of this run (" + in +
+                                 "); write the trajectory elsewhere");
+    }
+  }
+  if (!csv.empty() && !tum.empty() && same(csv, tum))
+    throw std::runtime_error(csv + ": given for both --out and --tum");
 }
 
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {
@@ -33,6 +57,44 @@ void LimitOpenCvThreads() {
   // parallel loops (cvtColor and the like, inside each worker) would only add threads that
   // compete with them (fr1_xyz, 2 workers, 3 alternating runs each: 33.6 -> 34.1 fps).
   cv::setNumThreads(1);
+}
+
+namespace {
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
+              "used in a signal handler");
+struct sigaction g_previous_int = {}, g_previous_term = {};
+
+extern "C" void OnStopSignal(int signo) {
+  g_signal = signo;
+  g_stop = true;
+  signal(SIGINT, SIG_DFL);  // a second signal ends the process
+  signal(SIGTERM, SIG_DFL);
+}
+}  // namespace
+
+StopOnSignals::StopOnSignals() {
+  g_stop = false;
+  g_signal = 0;
+  struct sigaction action = {};
+  action.sa_handler = OnStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, &g_previous_int);
+  sigaction(SIGTERM, &action, &g_previous_term);
+}
+
+StopOnSignals::~StopOnSignals() {
+  sigaction(SIGINT, &g_previous_int, nullptr);
+  sigaction(SIGTERM, &g_previous_term, nullptr);
+}
+
+std::atomic<bool>& StopOnSignals::Flag() { return g_stop; }
+int StopOnSignals::Signal() { return g_signal; }
+
+std::optional<Frame> StoppableSource::Next() {
+  if (StopOnSignals::Flag()) return std::nullopt;
+  return inner_.Next();
 }
 
 std::function<void(const std::string&)> PrintWarning(bool progress) {

@@ -3,13 +3,16 @@
 // header.
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "rgbdvo/calibration.hpp"
+#include "rgbdvo/frame_source.hpp"
 #include "rgbdvo/odometry.hpp"
 #include "rgbdvo/run.hpp"
 #include "rgbdvo/trajectory_writer.hpp"
@@ -19,6 +22,9 @@ namespace rgbdvo::cli {
 struct TrajectoryOutputs {
   std::string csv, tum;
   void AddFlags(CLI::App* cmd);  // --out, --tum
+  // Throws naming the file when an output is one of `inputs` (existing files; others are
+  // ignored) or both outputs are the same file: writing would destroy what the run reads.
+  void RefuseInputs(const std::vector<std::string>& inputs) const;
   // A writer per file given; throws naming a file that cannot be written.
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
 };
@@ -28,6 +34,31 @@ void AddThreadsFlag(CLI::App* cmd, RunOptions* options);
 // Turns OpenCV's own parallel loops off: our threads (one, or the feature workers) are the
 // parallelism.
 void LimitOpenCvThreads();
+
+// SIGINT and SIGTERM while an instance lives: the first one only sets a flag (the run finishes
+// the frame in hand, writes it and stops, so nothing computed is lost); a second one ends the
+// process the default way. The previous handlers are restored on destruction.
+class StopOnSignals {
+ public:
+  StopOnSignals();
+  ~StopOnSignals();
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+  // Set by the first signal; for sources that poll a flag (KinectSourceOptions::stop).
+  static std::atomic<bool>& Flag();
+  static int Signal();  // the signal's number, 0 while none came
+};
+
+// `inner` until StopOnSignals::Flag() is set, then the end (the frames in flight still finish).
+class StoppableSource : public FrameSource {
+ public:
+  explicit StoppableSource(FrameSource& inner) : inner_(inner) {}
+  std::optional<Frame> Next() override;
+  std::string Describe() const override { return inner_.Describe(); }
+
+ private:
+  FrameSource& inner_;
+};
 
 // A run's on_warning: "rgbdvo: warning: ..." on stderr, on a fresh line when a progress line
 // (`progress`) is being redrawn there.

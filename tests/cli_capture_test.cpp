@@ -22,18 +22,6 @@ namespace {
 
 constexpr int kFrames = 20;
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::vector<std::string> Lines(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 // Poses of a TUM trajectory file.
 std::vector<Rigid3d> ReadTumPoses(const std::string& path) {
   std::vector<Rigid3d> poses;

@@ -11,15 +11,6 @@ using namespace rgbdvo;
 using namespace rgbdvo::test;
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-}  // namespace
-
 TEST_CASE("fakenect file names round-trip and parse as fakenect-record writes them") {
   const FakenectName n = MakeFakenectName('d', 1294139591394762, 1405006245u);
   CHECK(n.ToString() == "d-1294139591.394762-1405006245.pgm");

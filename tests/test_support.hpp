@@ -34,6 +34,10 @@ Calibration CalibFor(const PinholeCamera& cam);
 // A fresh empty temporary folder, unique per call.
 std::string MakeTempDir(const std::string& tag);
 
+// A file's bytes ("" when missing), and its lines without their ends.
+std::string Slurp(const std::string& path);
+std::vector<std::string> Lines(const std::string& path);
+
 // Runs a shell command; returns its exit status and puts stdout+stderr into *output.
 int RunCommand(const std::string& command, std::string* output);
 
