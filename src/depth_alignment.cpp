@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/core/eigen.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/rgbd.hpp>
 #include <optional>
 #include <stdexcept>
@@ -10,9 +11,12 @@
 namespace rgbdvo {
 namespace {
 
-cv::Mat OdometryDepth(const cv::Mat& depth_m) {
-  cv::Mat d = depth_m.clone();
-  d.setTo(std::numeric_limits<float>::quiet_NaN(), depth_m <= 0);  // no reading: NaN for OpenCV
+// Every `step`-th pixel (readings are not averaged across depth edges), no reading as NaN.
+cv::Mat OdometryDepth(const cv::Mat& depth_m, int step) {
+  cv::Mat d;
+  cv::resize(depth_m, d, cv::Size(depth_m.cols / step, depth_m.rows / step), 0, 0,
+             cv::INTER_NEAREST);
+  d.setTo(std::numeric_limits<float>::quiet_NaN(), d <= 0);
   return d;
 }
 
@@ -57,6 +61,8 @@ void DepthAlignOptions::Check() const {
     throw std::invalid_argument("depth alignment max_rotation_deg must be in (0, 180]");
   if (!(min_agreement >= 0 && min_agreement <= 1))
     throw std::invalid_argument("depth alignment min_agreement must be in [0, 1]");
+  if (downsample < 1 || downsample > 8)
+    throw std::invalid_argument("depth alignment downsample must be in [1, 8]");
   if (!(agreement_sigmas > 0 && depth_noise_coeff >= 0 && agreement_floor_m >= 0))
     throw std::invalid_argument("depth alignment agreement tolerances must be positive");
 }
@@ -89,8 +95,10 @@ double DepthAgreement(const DepthAlignOptions& o, const Calibration& calib,
 DepthAligner::DepthAligner(const DepthAlignOptions& options, const Calibration& calib)
     : options_(options), calib_(calib) {
   options_.Check();
-  const cv::Mat K =
-      (cv::Mat_<double>(3, 3) << calib.fx, 0, calib.cx, 0, calib.fy, calib.cy, 0, 0, 1);
+  // The camera of the downsampled images: pixel k covers original pixels [s k, s k + s - 1].
+  const double s = 1.0 / options.downsample;
+  const cv::Mat K = (cv::Mat_<double>(3, 3) << calib.fx * s, 0, (calib.cx + 0.5) * s - 0.5, 0,
+                     calib.fy * s, (calib.cy + 0.5) * s - 0.5, 0, 0, 1);
   icp_ = cv::rgbd::ICPOdometry::create(K);
   icp_->setMinDepth(calib.min_depth_m);
   icp_->setMaxDepth(calib.max_depth_m);
@@ -105,7 +113,8 @@ DepthAlignResult DepthAligner::Align(const cv::Mat& prev_depth_m, const cv::Mat&
       prev_depth_m.size() != cur_depth_m.size() || prev_depth_m.empty())
     throw std::invalid_argument(
         "DepthAligner::Align needs two CV_32FC1 depth images of the same size");
-  const cv::Mat prev = OdometryDepth(prev_depth_m), cur = OdometryDepth(cur_depth_m);
+  const cv::Mat prev = OdometryDepth(prev_depth_m, options_.downsample);
+  const cv::Mat cur = OdometryDepth(cur_depth_m, options_.downsample);
   // The starts. FastICPOdometry from no motion finds the rotation of a fast turn well but, far
   // from the minimum, can trade a yaw for a sideways shift and end decimetres off; so ICP is
   // also started from its rotation with no translation and with the predicted one, and from the

@@ -23,6 +23,10 @@ struct DepthAlignOptions {
   // Largest motion accepted between the two depth images (as the paper's verification).
   double max_translation_m = 0.5;
   double max_rotation_deg = 60.0;
+  // ICP on every n-th pixel of each row and column: on fr1/desk's fast turn (7 frames) half
+  // resolution is 4x faster (52 against 210 ms a frame) and as accurate on 6 frames (within
+  // 0.13 degrees and 3 mm), 1.9 degrees worse on one.
+  int downsample = 2;
   // Accept a result only if at least this fraction of the current image's points that land on a
   // reading of the previous image agree with it (DepthAgreement): a majority.
   double min_agreement = 0.5;
