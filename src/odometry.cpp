@@ -1,5 +1,6 @@
 #include "rgbdvo/odometry.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -309,7 +310,13 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
   world_from_cur.linear() = NearestRotation(world_from_cur.linear());
   r.world_from_cam = world_from_cur;
-  if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run) {
+  // A frame with fewer points than a verified motion needs inliers (a blank wall, a covered
+  // lens) cannot be matched by the frames after it: no restart from it; the next one is tried.
+  const auto points = std::count_if(cur.points.begin(), cur.points.end(),
+                                    [](const auto& p) { return p.has_value(); });
+  const bool can_restart = points >= options_.verify.min_inliers;
+  if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run &&
+      can_restart) {
     // The references are out of reach: restart from this frame at the pose just reported.
     cur.world_from_cam = world_from_cur;
     key_ = last_ = std::move(cur);

@@ -155,19 +155,51 @@ TEST_CASE("A burst of fast, blurred rotation is bridged and measured across") {
 }
 
 TEST_CASE("After max_rejected_run rejections the odometry restarts and says lost") {
-  const SyntheticScene scene;
+  // The frames after the first show another world (another texture, the same depth): features,
+  // but none that match. With depth_fallback off nothing else can carry them.
+  const SyntheticScene scene, other(99);
   const PinholeCamera cam;
   OdometryOptions options;
   options.max_rejected_run = 2;
-  options.depth_fallback = false;  // the blank frames' depth would carry them
+  options.depth_fallback = false;
   Odometry odometry(options, CalibFor(cam));
   odometry.Process(Render(scene, cam, Rigid3d::Identity(), 0));
-  Frame blank = Render(scene, cam, Rigid3d::Identity(), 1);
-  blank.bgr.setTo(cv::Scalar(90, 90, 90));
-  CHECK(odometry.Process(blank).status == FrameStatus::kPredicted);
-  const FrameResult lost = odometry.Process(blank);
+  CHECK(odometry.Process(Render(other, cam, Rigid3d::Identity(), 1)).status ==
+        FrameStatus::kPredicted);
+  const FrameResult lost = odometry.Process(Render(other, cam, Rigid3d::Identity(), 2));
   CHECK(lost.status == FrameStatus::kLost);
   CHECK(lost.StatusString().rfind("lost:", 0) == 0);
+  // The restart frame is the reference now: the next view of that world matches it.
+  CHECK(odometry.Process(Render(other, cam, Rigid3d::Identity(), 3)).status ==
+        FrameStatus::kAccepted);
+}
+
+TEST_CASE(
+    "A frame without features never becomes the reference: tracking resumes from the old one") {
+  // Blank colour (a white wall, a covered lens) for longer than max_rejected_run: restarting
+  // from such a frame would make the frames after it unmatchable too, so the odometry keeps
+  // predicting until a frame with points comes, and that one is matched against the old
+  // keyframe, 6 frames back.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(10, 0.01, 0.5);
+  OdometryOptions options;
+  options.max_rejected_run = 2;
+  options.depth_fallback = false;
+  Odometry odometry(options, CalibFor(cam));
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    Frame f = Render(scene, cam, path[i], i);
+    const bool blank = i >= 2 && i <= 7;
+    if (blank) f.bgr.setTo(cv::Scalar(128, 128, 128));
+    const FrameResult r = odometry.Process(f);
+    INFO("frame " << i << " " << r.StatusString());
+    if (blank) {
+      CHECK(r.status == FrameStatus::kPredicted);
+    } else {
+      REQUIRE(HasEstimate(r.status));
+      CHECK(RigidNear(r.world_from_cam, path[i], 0.3, 0.01));
+    }
+  }
 }
 
 TEST_CASE("Guided matching follows a smooth path without falling back") {
