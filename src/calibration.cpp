@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <stdexcept>
 #include <string>
@@ -73,9 +76,23 @@ Calibration LoadCalibration(const std::string& path) {
   if (bytes > kMaxBytes)
     throw std::runtime_error(path + ": " + std::to_string(bytes) +
                              " bytes, too large for a calibration file (at most 1 MiB)");
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) throw std::runtime_error(path + ": cannot read calibration file");
+  // A calibration is text. OpenCV's YAML reader loops forever on some inputs with control bytes
+  // (a NUL in a 75-byte file, found by tests/fuzz), so they are refused before it sees them.
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') || byte == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02x", byte);
+      throw std::runtime_error(path + ": not a text file (control byte " + hex + " at offset " +
+                               std::to_string(i) + ")");
+    }
+  }
   cv::FileStorage fs;
   try {
-    fs.open(path, cv::FileStorage::READ);
+    fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   } catch (const cv::Exception& e) {
     throw std::runtime_error(path + ": not a readable calibration YAML file (" + e.err + ")");
   }

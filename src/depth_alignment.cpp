@@ -7,6 +7,7 @@
 #include <opencv2/rgbd.hpp>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 
 namespace rgbdvo {
 namespace {
@@ -120,7 +121,8 @@ DepthAlignResult DepthAligner::Align(const cv::Mat& prev_depth_m, const cv::Mat&
   // also started from its rotation with no translation and with the predicted one, and from the
   // prediction itself.
   std::vector<Rigid3d> candidates;
-  auto [icp_prev, icp_cur] = CachedFrames(*icp_, prev, cur);
+  cv::Ptr<cv::rgbd::OdometryFrame> icp_prev, icp_cur;  // not a structured binding: captured below
+  std::tie(icp_prev, icp_cur) = CachedFrames(*icp_, prev, cur);
   const auto add_icp_from = [&](const Rigid3d& start) {
     if (const std::optional<Rigid3d> r = RunOdometry(*icp_, icp_prev, icp_cur, start))
       candidates.push_back(*r);

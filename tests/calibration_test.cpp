@@ -115,3 +115,21 @@ TEST_CASE("Calibration matrices are checked against their shape before anything 
   std::ofstream(big) << head << std::string(2 << 20, ' ') << "\n";
   CHECK_THROWS_WITH(LoadCalibration(big), Catch::Contains("big.yaml") && Catch::Contains("1 MiB"));
 }
+
+TEST_CASE("A calibration file with control bytes is refused before OpenCV's parser sees it") {
+  // The input tests/fuzz found: OpenCV's YAML reader loops forever on it (a NUL at offset 45).
+  const std::string finding =
+      test::SourceDir() + "/tests/fuzz/corpus/calibration/findings/opencv_yaml_hang_on_nul.yaml";
+  CHECK_THROWS_WITH(LoadCalibration(finding),
+                    Catch::Contains("not a text file") && Catch::Contains("0x00 at offset 45"));
+  // CRLF line ends are text.
+  const std::string dir = test::MakeTempDir("calib_text");
+  std::string yaml;
+  for (const std::string line : {"%YAML:1.0", "---", "A: 1.", "B: 0.", "C: 1.", "D: 0.",
+                                 "K_ir: !!opencv-matrix", "   rows: 3", "   cols: 3", "   dt: d",
+                                 "   data: [ 500., 0., 320., 0., 500., 240., 0., 0., 1. ]",
+                                 "min_depth_m: 0.4", "max_depth_m: 8."})
+    yaml += line + "\r\n";
+  std::ofstream(dir + "/crlf.yaml", std::ios::binary) << yaml;
+  CHECK(LoadCalibration(dir + "/crlf.yaml").fx == 500);
+}

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (tests/fuzz, clang with ASan and UBSan) in ./build-fuzz and runs
+# each for SECONDS (default 30) from its seed corpus (libFuzzer seed 1), at most 2 GiB of memory
+# and 10 s per input.
+# New interesting inputs go to a scratch corpus, not into the repository. A crash, a sanitizer
+# report, a timeout or an out-of-memory stops with the input saved under build-fuzz/findings/;
+# add it to tests/fuzz/corpus/<target>/findings/ with the fix, so the replay tests keep it.
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-30}
+shift || true
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(png tum_list fakenect_index pnm calibration pixel_pairs trajectory)
+
+need=()
+for p in clang libclang-rt-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need+=("$p")
+done
+if [ ${#need[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${need[@]}"
+fi
+
+cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DRGBDVO_FUZZ=ON >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}")
+
+mkdir -p build-fuzz/findings
+status=0
+for t in "${targets[@]}"; do
+  scratch=build-fuzz/corpus/$t
+  mkdir -p "$scratch"
+  log=build-fuzz/fuzz_$t.log
+  if build-fuzz/tests/fuzz/fuzz_$t "$scratch" tests/fuzz/corpus/$t -max_total_time="$seconds" \
+       -seed=1 -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout=10 -print_final_stats=1 \
+       -artifact_prefix=build-fuzz/findings/${t}- >"$log" 2>&1; then
+    echo "fuzz $t: $(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$') inputs in ${seconds} s, $(grep -o 'cov: [0-9]*' "$log" | tail -1), no finding"
+  else
+    echo "fuzz $t: FINDING, see $log and build-fuzz/findings/"
+    grep -m3 -E 'ERROR|SUMMARY|==[0-9]+==' "$log" || tail -5 "$log"
+    status=1
+  fi
+done
+exit $status

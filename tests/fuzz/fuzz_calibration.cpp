@@ -1,0 +1,14 @@
+// Fuzz target: the calibration YAML loader.
+#include <exception>
+
+#include "fuzz_input.hpp"
+#include "rgbdvo/calibration.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  try {
+    rgbdvo::LoadCalibration(rgbdvo::fuzz::InputFile(data, size, ".yaml"));
+  } catch (const std::exception&) {
+    // refused with a message: expected
+  }
+  return 0;
+}
