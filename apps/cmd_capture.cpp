@@ -39,6 +39,8 @@ int Capture(CaptureArgs& a) {
   // where the oldest pair is dropped and counted (the newest frame wins).
   a.run.queue_frames = 1;
   a.outputs.RefuseInputs({a.calib});
+  // With a trajectory on standard output ("-"), everything else goes to stderr.
+  std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
@@ -48,8 +50,8 @@ int Capture(CaptureArgs& a) {
 
   KinectSource source(a.kinect);
   if (!a.quiet) {
-    PrintConfiguration(std::cout, source.Describe(), a.calib, calib, odometry_options, a.run);
-    std::cout << "# Ctrl-C (or SIGTERM) stops cleanly" << std::endl;
+    PrintConfiguration(info, source.Describe(), a.calib, calib, odometry_options, a.run);
+    info << "# Ctrl-C (or SIGTERM) stops cleanly" << std::endl;
   }
   LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
@@ -72,7 +74,7 @@ int Capture(CaptureArgs& a) {
       RunOdometry(source, odometry, writer_ptrs, on_frame, a.run, PrintWarning(progress));
   if (progress) std::cerr << "\n";
   const CaptureStats stats = source.stats();
-  std::cout << summary.Brief() << "; " << stats.Brief() << std::endl;
+  info << summary.Brief() << "; " << stats.Brief() << std::endl;
   if (stats.end == CaptureEnd::kDeviceLost) {
     std::cerr << "rgbdvo: error: " << stats.end_reason
               << "; the trajectory and recording so far are complete and usable" << std::endl;

@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "rgbdvo/calibration.hpp"
+#include "rgbdvo/frame_range.hpp"
 #include "rgbdvo/open_source.hpp"
 #include "rgbdvo/plot.hpp"
 #include "rgbdvo/run.hpp"
@@ -25,6 +26,7 @@ struct RunArgs {
   int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
   RunOptions run;
   SourceOptions source;
+  FrameRange range;
   std::unique_ptr<OdometryFlags> odometry_flags;
 };
 
@@ -37,17 +39,23 @@ struct PoseRecorder : TrajectoryWriter {
 int Run(const RunArgs& a) {
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
   const Calibration calib = LoadCalibration(a.calib);
-  std::unique_ptr<FrameSource> source = OpenRecording(a.folder, a.source);
-  if (auto* tum = dynamic_cast<TumSource*>(source.get()); tum && !tum->unpaired().empty()) {
+  std::unique_ptr<FrameSource> recording = OpenRecording(a.folder, a.source);
+  if (auto* tum = dynamic_cast<TumSource*>(recording.get()); tum && !tum->unpaired().empty()) {
     std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
               << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
               << " s (first: " << tum->unpaired().front().path << ")\n";
   }
+  const auto source = std::make_unique<FrameRangeSource>(std::move(recording), a.range);
   std::vector<std::string> inputs = {a.calib};
   for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt",
                            "INDEX.txt", "associations.txt"})
     inputs.push_back((std::filesystem::path(a.folder) / name).string());
   a.outputs.RefuseInputs(inputs);
+  // With a trajectory on standard output ("-"), everything else goes to stderr.
+  std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
+  if (a.outputs.csv.empty() && a.outputs.tum.empty() && a.plot.empty())
+    std::cerr << "rgbdvo: warning: no --out, --tum or --plot: the trajectory is computed but not "
+                 "written\n";
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
@@ -55,8 +63,8 @@ int Run(const RunArgs& a) {
   if (!a.plot.empty()) writer_ptrs.push_back(&recorder);
 
   if (!a.quiet) {
-    PrintConfiguration(std::cout, source->Describe(), a.calib, calib, odometry_options, a.run);
-    std::cout << std::flush;
+    PrintConfiguration(info, source->Describe(), a.calib, calib, odometry_options, a.run);
+    info << std::flush;
   }
   LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
@@ -73,7 +81,7 @@ int Run(const RunArgs& a) {
       },
       a.run, PrintWarning(progress));
   if (progress) std::cerr << "\n";
-  std::cout << summary.Brief() << std::endl;
+  info << summary.Brief() << std::endl;
   if (const int signo = StopOnSignals::Signal(); signo != 0) {
     // Interrupted: what was computed is written; the exit code says the run is incomplete, as a
     // shell reports a command ended by that signal.
@@ -82,14 +90,14 @@ int Run(const RunArgs& a) {
               << std::endl;
     return 128 + signo;
   }
-  if (a.timing) std::cout << summary.Timing() << "\n" << summary.Matching() << std::endl;
+  if (a.timing) info << summary.Timing() << "\n" << summary.Matching() << std::endl;
   if (!a.plot.empty()) {  // with the folder's groundtruth.txt when it has one
     const std::string gt_path = (std::filesystem::path(a.folder) / "groundtruth.txt").string();
     std::vector<StampedPose> gt;
     if (std::filesystem::exists(gt_path)) gt = ReadTrajectory(gt_path).poses;
     PlotOptions plot;
     plot.title = "rgbdvo run " + a.folder;
-    std::cout << PlotTrajectory(recorder.poses, gt, a.plot, plot).Brief() << std::endl;
+    info << PlotTrajectory(recorder.poses, gt, a.plot, plot).Brief() << std::endl;
   }
   return 0;
 }
@@ -107,6 +115,14 @@ void AddRunCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")
       ->capture_default_str();
+  cmd->add_option("--start", args->range.start,
+                  "first frame (colour-depth pair, counted from 0); rows keep the recording's "
+                  "frame numbers")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-frames", args->range.max_frames, "at most N frames (0 = to the end)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--plot", args->plot, "PNG of the path after the run (with ground truth if any)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
   AddThreadsFlag(cmd, &args->run);

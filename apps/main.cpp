@@ -1,10 +1,13 @@
 // rgbdvo: RGB-D visual odometry after Fiala & Ufkes (CRV 2011).
 #include <exception>
 #include <iostream>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+  // OpenCV's own log lines ([ WARN:0@...] ...) would interleave with ours; errors we report.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
   CLI::App app{"rgbdvo: visual odometry for Kinect-style RGB-D cameras (Fiala & Ufkes 2011)"};
   app.set_version_flag("--version", "rgbdvo " RGBDVO_VERSION);
   app.require_subcommand(1);

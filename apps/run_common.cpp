@@ -11,8 +11,9 @@
 namespace rgbdvo::cli {
 
 void TrajectoryOutputs::AddFlags(CLI::App* cmd) {
-  cmd->add_option("--out", csv, "trajectory CSV, written frame by frame");
-  cmd->add_option("--tum", tum, "trajectory in TUM format (timestamp tx ty tz qx qy qz qw)");
+  cmd->add_option("--out", csv, "trajectory CSV, written frame by frame (- = standard output)");
+  cmd->add_option("--tum", tum,
+                  "trajectory in TUM format (timestamp tx ty tz qx qy qz qw; - = standard output)");
 }
 
 std::vector<std::unique_ptr<TrajectoryWriter>> TrajectoryOutputs::Open() const {

@@ -25,6 +25,7 @@ struct TrajectoryOutputs {
   // Throws naming the file when an output is one of `inputs` (existing files; others are
   // ignored) or both outputs are the same file: writing would destroy what the run reads.
   void RefuseInputs(const std::vector<std::string>& inputs) const;
+  bool UsesStdout() const { return csv == "-" || tum == "-"; }
   // A writer per file given; throws naming a file that cannot be written.
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
 };

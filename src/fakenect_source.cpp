@@ -120,6 +120,12 @@ std::optional<Frame> FakenectSource::Next() {
   return f;
 }
 
+bool FakenectSource::Skip() {
+  if (next_ >= pairs_.size()) return false;
+  ++next_;
+  return true;
+}
+
 std::string FakenectSource::Describe() const {
   std::ostringstream s;
   s << "fakenect recording " << folder_ << ": " << pairs_.size() << " colour-depth pairs within "

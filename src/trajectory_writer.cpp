@@ -2,19 +2,25 @@
 
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <stdexcept>
 
 namespace rgbdvo {
 namespace {
 
-std::ofstream OpenOrThrow(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // failure shows below
-  std::ofstream out(path, std::ios::out | std::ios::trunc);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+// Opens `path` for writing, or points `out` at standard output for "-".
+void OpenOrThrow(std::ofstream& out, const std::string& path) {
+  if (path == "-") {
+    out.std::basic_ios<char>::rdbuf(std::cout.rdbuf());
+    out.clear();
+  } else {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // failure shows below
+    out.open(path, std::ios::out | std::ios::trunc);
+    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  }
   out << std::fixed;
-  return out;
 }
 
 void WritePose(std::ostream& out, const Rigid3d& T, char sep) {
@@ -26,13 +32,15 @@ void WritePose(std::ostream& out, const Rigid3d& T, char sep) {
 
 void FlushOrThrow(std::ofstream& out, const std::string& path) {
   out.flush();
-  if (!out) throw std::runtime_error(path + ": write failed (disk full or file gone?)");
+  if (!out)
+    throw std::runtime_error((path == "-" ? std::string("standard output") : path) +
+                             ": write failed (disk full, file gone or pipe closed?)");
 }
 
 }  // namespace
 
-CsvTrajectoryWriter::CsvTrajectoryWriter(const std::string& path)
-    : path_(path), out_(OpenOrThrow(path)) {
+CsvTrajectoryWriter::CsvTrajectoryWriter(const std::string& path) : path_(path) {
+  OpenOrThrow(out_, path_);
   out_ << "frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status\n";
   FlushOrThrow(out_, path_);
 }
@@ -44,8 +52,8 @@ void CsvTrajectoryWriter::Write(const FrameResult& r) {
   FlushOrThrow(out_, path_);
 }
 
-TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path)
-    : path_(path), out_(OpenOrThrow(path)) {
+TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path) : path_(path) {
+  OpenOrThrow(out_, path_);
   out_ << "# timestamp tx ty tz qx qy qz qw (camera-to-world, rgbdvo)\n";
   FlushOrThrow(out_, path_);
 }

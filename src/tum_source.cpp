@@ -104,6 +104,12 @@ std::optional<Frame> TumSource::Next() {
   return f;
 }
 
+bool TumSource::Skip() {
+  if (next_ >= pairs_.size()) return false;
+  ++next_;
+  return true;
+}
+
 std::string TumSource::Describe() const {
   std::ostringstream s;
   s << "TUM RGB-D folder " << folder_ << ": " << pairs_.size() << " rgb-depth pairs within "

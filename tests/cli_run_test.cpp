@@ -5,6 +5,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -252,4 +253,42 @@ TEST_CASE("rgbdvo run: a full disk is detected on the first write, naming the fi
     CHECK(code == 1);
     CHECK_THAT(out, Catch::Contains("/dev/full: write failed"));
   }
+}
+
+TEST_CASE("rgbdvo run --tum - writes the trajectory to standard output and nothing else there") {
+  const std::string dir = SyntheticFolder();
+  std::string out;
+  const std::string cmd = RgbdvoExe() + " run " + dir + " --calib " + SyntheticCalib(dir) +
+                          " --tum - 2>" + dir + "/stderr.txt";
+  REQUIRE(RunCommand("(cd " + dir + " && " + cmd + ")", &out) == 0);
+  std::istringstream lines(out);
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(lines, line);) rows.push_back(line);
+  REQUIRE(rows.size() == 7);  // the header comment and 6 poses: no configuration, no summary
+  CHECK(rows[0].rfind("# timestamp", 0) == 0);
+  for (size_t k = 1; k < rows.size(); ++k)
+    CHECK(std::count(rows[k].begin(), rows[k].end(), ' ') == 7);
+  CHECK_THAT(Slurp(dir + "/stderr.txt"), Catch::Contains("6 frames, 6 accepted"));
+  CHECK_FALSE(fs::exists(dir + "/-"));
+}
+
+TEST_CASE("rgbdvo run --start/--max-frames runs a part, keeping the recording's frame numbers") {
+  const std::string dir = SyntheticFolder();
+  // Frame 1 is passed over without being read: its colour image may be missing.
+  fs::remove(dir + "/rgb/000001.png");
+  int code = 0;
+  std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --start 2 --max-frames 3 " +
+                            "--out " + dir + "/t.csv --quiet",
+                        &code);
+  INFO(out);
+  REQUIRE(code == 0);
+  CHECK_THAT(out, Catch::StartsWith("3 frames, 3 accepted"));
+  const std::vector<std::string> rows = Lines(dir + "/t.csv");
+  REQUIRE(rows.size() == 4);
+  CHECK(rows[1].rfind("2,", 0) == 0);
+  CHECK_THAT(rows[1], Catch::EndsWith("first"));
+  CHECK(rows[3].rfind("4,", 0) == 0);
+  out = Run(dir + " --calib " + SyntheticCalib(dir) + " --start 6", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("start frame 6 is beyond the recording's end (it has 6 frames)"));
 }

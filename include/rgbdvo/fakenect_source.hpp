@@ -31,6 +31,7 @@ class FakenectSource : public FrameSource {
   FakenectSource(const std::string& folder, const FakenectSourceOptions& options);
   std::optional<Frame> Next() override;
   std::string Describe() const override;
+  bool Skip() override;
 
   size_t size() const { return pairs_.size(); }
   int unpaired() const { return unpaired_; }  // colour frames without depth in the window

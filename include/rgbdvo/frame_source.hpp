@@ -16,6 +16,9 @@ class FrameSource {
   virtual std::optional<Frame> Next() = 0;
   // One line: what is read and how (for the configuration printed at the start of a run).
   virtual std::string Describe() const = 0;
+  // Passes over the next frame; false at the end. Recorded folders skip without reading the
+  // images; the default reads the frame and drops it.
+  virtual bool Skip() { return Next().has_value(); }
 };
 
 }  // namespace rgbdvo

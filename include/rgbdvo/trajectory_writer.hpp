@@ -18,7 +18,8 @@ class TrajectoryWriter {
 // CSV: header `frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status`, a row per frame.
 class CsvTrajectoryWriter : public TrajectoryWriter {
  public:
-  explicit CsvTrajectoryWriter(const std::string& path);  // throws naming the file
+  // "-" = standard output. Throws naming the file when it cannot be opened.
+  explicit CsvTrajectoryWriter(const std::string& path);
   void Write(const FrameResult& result) override;
 
  private:
@@ -29,7 +30,8 @@ class CsvTrajectoryWriter : public TrajectoryWriter {
 // TUM: `timestamp tx ty tz qx qy qz qw`, a line per frame (TUM benchmark tools' format).
 class TumTrajectoryWriter : public TrajectoryWriter {
  public:
-  explicit TumTrajectoryWriter(const std::string& path);  // throws naming the file
+  // "-" = standard output. Throws naming the file when it cannot be opened.
+  explicit TumTrajectoryWriter(const std::string& path);
   void Write(const FrameResult& result) override;
 
  private:

@@ -33,6 +33,7 @@ class TumSource : public FrameSource {
   TumSource(const std::string& folder, const TumSourceOptions& options);
   std::optional<Frame> Next() override;
   std::string Describe() const override;
+  bool Skip() override;
 
   size_t size() const { return pairs_.size(); }
   // Colour frames with no depth frame within the window (reported, then skipped).
