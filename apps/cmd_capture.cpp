@@ -55,7 +55,8 @@ int Capture(CaptureArgs& a) {
   }
   LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
-  const bool progress = !a.quiet && isatty(STDERR_FILENO);
+  StatusLine status(a.quiet, std::nullopt);
+  const bool progress = status.redrawn();
   int warned_at = 0;
   const auto on_frame = [&](const FrameResult& r) {
     const int dropped = source.stats().dropped;
@@ -65,14 +66,13 @@ int Capture(CaptureArgs& a) {
                 << std::endl;
       warned_at = dropped;
     }
-    if (progress)
-      std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
+    status.Update(r, ", " + std::to_string(dropped) + " dropped");
     if (a.frame_delay_ms > 0)
       std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
   };
   const RunSummary summary =
       RunOdometry(source, odometry, writer_ptrs, on_frame, a.run, PrintWarning(progress));
-  if (progress) std::cerr << "\n";
+  status.Finish();
   const CaptureStats stats = source.stats();
   info << summary.Brief() << "; " << stats.Brief() << std::endl;
   if (stats.end == CaptureEnd::kDeviceLost) {

@@ -68,19 +68,18 @@ int Run(const RunArgs& a) {
   }
   LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
-  const bool progress = !a.quiet && isatty(STDERR_FILENO);
   const StopOnSignals stop_on_signals;
   StoppableSource stoppable(*source);
+  StatusLine status(a.quiet, stoppable.Size());
   const RunSummary summary = RunOdometry(
       stoppable, odometry, writer_ptrs,
       [&](const FrameResult& r) {
-        if (progress)
-          std::cerr << "\rframe " << r.frame << " " << r.StatusString() << "      " << std::flush;
+        status.Update(r);
         if (a.frame_delay_ms > 0)
           std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
       },
-      a.run, PrintWarning(progress));
-  if (progress) std::cerr << "\n";
+      a.run, PrintWarning(status.redrawn()));
+  status.Finish();
   info << summary.Brief() << std::endl;
   if (const int signo = StopOnSignals::Signal(); signo != 0) {
     // Interrupted: what was computed is written; the exit code says the run is incomplete, as a

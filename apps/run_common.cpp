@@ -1,8 +1,11 @@
 #include "run_common.hpp"
 
 #include <signal.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <opencv2/core/utility.hpp>
 #include <sstream>
@@ -96,6 +99,47 @@ int StopOnSignals::Signal() { return g_signal; }
 std::optional<Frame> StoppableSource::Next() {
   if (StopOnSignals::Flag()) return std::nullopt;
   return inner_.Next();
+}
+
+StatusLine::StatusLine(bool quiet, std::optional<size_t> total)
+    : quiet_(quiet),
+      terminal_(!quiet && isatty(STDERR_FILENO)),
+      total_(total),
+      start_(std::chrono::steady_clock::now()),
+      last_print_(start_) {}
+
+std::string StatusLine::Text(const FrameResult& r, const std::string& extra) const {
+  const double seconds = std::chrono::duration<double>(last_print_ - start_).count();
+  const double fps = seconds > 0 ? done_ / seconds : 0;
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << "frame " << r.frame;
+  if (total_)
+    s << " (" << done_ << "/" << *total_ << ", " << 100 * done_ / std::max<size_t>(1, *total_)
+      << " %)";
+  const std::string status = r.StatusString();
+  s << ", " << fps << " fps, " << r.inliers << " inliers, " << status.substr(0, status.find(':'));
+  if (total_ && fps > 0 && *total_ > done_)
+    s << ", " << static_cast<long>((*total_ - done_) / fps + 0.5) << " s left";
+  return s.str() + extra;
+}
+
+void StatusLine::Update(const FrameResult& r, const std::string& extra) {
+  if (quiet_) return;
+  ++done_;
+  const auto now = std::chrono::steady_clock::now();
+  const double since = std::chrono::duration<double>(now - last_print_).count();
+  if (since < (terminal_ ? 0.1 : 10.0)) return;
+  last_print_ = now;
+  if (terminal_) {
+    std::cerr << "\r" << Text(r, extra) << "\x1b[K" << std::flush;  // erase the rest of the line
+  } else {
+    std::cerr << "rgbdvo: " << Text(r, extra) << std::endl;
+  }
+  printed_ = true;
+}
+
+void StatusLine::Finish() {
+  if (terminal_ && printed_) std::cerr << "\n";
 }
 
 std::function<void(const std::string&)> PrintWarning(bool progress) {

@@ -1,5 +1,6 @@
 #include "rgbdvo/frame_range.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace rgbdvo {
@@ -31,6 +32,15 @@ std::optional<Frame> FrameRangeSource::Next() {
                              std::to_string(range_.start) + " frames)");
   if (frame) ++returned_;
   return frame;
+}
+
+std::optional<size_t> FrameRangeSource::Size() const {
+  const std::optional<size_t> all = inner_->Size();
+  if (!all) return std::nullopt;
+  const size_t start = static_cast<size_t>(range_.start);
+  size_t n = *all > start ? *all - start : 0;
+  if (range_.max_frames > 0) n = std::min(n, static_cast<size_t>(range_.max_frames));
+  return n;
 }
 
 std::string FrameRangeSource::Describe() const {

@@ -292,3 +292,19 @@ TEST_CASE("rgbdvo run --start/--max-frames runs a part, keeping the recording's 
   CHECK(code == 1);
   CHECK_THAT(out, Catch::Contains("start frame 6 is beyond the recording's end (it has 6 frames)"));
 }
+
+TEST_CASE("rgbdvo run shows a status line on a terminal, none otherwise or with --quiet") {
+  // `script` (util-linux, in every Debian) gives the run a pseudo-terminal.
+  const std::string run = RgbdvoExe() + " run " + SourceDir() +
+                          "/data/tum_fr1_desk_turn24 --calib " + SourceDir() +
+                          "/calib/tum_fr1.yaml --debug-frame-delay-ms 50";
+  std::string out;
+  REQUIRE(RunCommand("script -qec '" + run + "' /dev/null", &out) == 0);
+  CHECK_THAT(out, Catch::Contains("/24, ") && Catch::Contains(" fps, ") &&
+                      Catch::Contains(" inliers, accepted") && Catch::Contains(" s left") &&
+                      Catch::Contains("\x1b[K"));
+  REQUIRE(RunCommand("script -qec '" + run + " --quiet' /dev/null", &out) == 0);
+  CHECK_THAT(out, !Catch::Contains("/24, "));
+  REQUIRE(RunCommand(run, &out) == 0);  // not a terminal, and shorter than the 10 s period
+  CHECK_THAT(out, !Catch::Contains("/24, ") && !Catch::Contains("\r"));
+}

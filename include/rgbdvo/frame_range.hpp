@@ -24,6 +24,7 @@ class FrameRangeSource : public FrameSource {
   FrameRangeSource(std::unique_ptr<FrameSource> inner, const FrameRange& range);
   std::optional<Frame> Next() override;
   std::string Describe() const override;
+  std::optional<size_t> Size() const override;  // the frames within the range
 
  private:
   std::unique_ptr<FrameSource> inner_;

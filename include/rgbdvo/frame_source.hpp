@@ -1,6 +1,7 @@
 #pragma once
 // A sequence of frames: a recorded folder or a live device.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -19,6 +20,9 @@ class FrameSource {
   // Passes over the next frame; false at the end. Recorded folders skip without reading the
   // images; the default reads the frame and drops it.
   virtual bool Skip() { return Next().has_value(); }
+  // Frames in all (read or not), when known in advance (recorded folders); nullopt for a live
+  // device.
+  virtual std::optional<size_t> Size() const { return std::nullopt; }
 };
 
 }  // namespace rgbdvo

@@ -34,6 +34,7 @@ class TumSource : public FrameSource {
   std::optional<Frame> Next() override;
   std::string Describe() const override;
   bool Skip() override;
+  std::optional<size_t> Size() const override { return pairs_.size(); }
 
   size_t size() const { return pairs_.size(); }
   // Colour frames with no depth frame within the window (reported, then skipped).
