@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "rgbdvo/depth_check.hpp"
 #include "rgbdvo/tracking_gaps.hpp"
 
 namespace rgbdvo {
@@ -254,6 +255,9 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     if (d.error) std::rethrow_exception(d.error);
     summary.decode_seconds += d.decode_seconds;
     if (!d.frame) break;
+    if (summary.frames == 0 && on_warning)
+      if (std::optional<std::string> w = CheckDepthScale(d.frame->depth_m, odometry.calibration()))
+        on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
     FrameResult result = odometry.Process(*d.frame, std::move(d.features));
     result.times.features = d.feature_seconds;
     const Clock::time_point t0 = Clock::now();

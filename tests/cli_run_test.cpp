@@ -308,3 +308,13 @@ TEST_CASE("rgbdvo run shows a status line on a terminal, none otherwise or with 
   REQUIRE(RunCommand(run, &out) == 0);  // not a terminal, and shorter than the 10 s period
   CHECK_THAT(out, !Catch::Contains("/24, ") && !Catch::Contains("\r"));
 }
+
+TEST_CASE("rgbdvo run warns when the depth scale does not fit the data") {
+  int code = 0;
+  const std::string out = Run(SourceDir() + "/data/tum_fr1_xyz_first30 --calib " + SourceDir() +
+                                  "/calib/tum_fr1.yaml --depth-scale 1000 --max-frames 2 --quiet",
+                              &code);
+  CHECK(code == 0);  // a warning: other sensors may step otherwise
+  CHECK_THAT(out, Catch::Contains("rgbdvo: warning: frame 0: the depth steps") &&
+                      Catch::Contains("5.00 times too large"));
+}

@@ -122,6 +122,7 @@ class Odometry {
   FrameResult Process(const Frame& frame, Features features);
   const SiftExtractor& extractor() const { return extractor_; }
   const OdometryOptions& options() const { return options_; }
+  const Calibration& calibration() const { return calib_; }
 
  private:
   struct Reference {
