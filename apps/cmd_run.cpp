@@ -53,9 +53,9 @@ int Run(const RunArgs& a) {
   a.outputs.RefuseInputs(inputs);
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
-  if (a.outputs.csv.empty() && a.outputs.tum.empty() && a.plot.empty())
-    std::cerr << "rgbdvo: warning: no --out, --tum or --plot: the trajectory is computed but not "
-                 "written\n";
+  if (a.outputs.csv.empty() && a.outputs.tum.empty() && a.outputs.kitti.empty() && a.plot.empty())
+    std::cerr << "rgbdvo: warning: no --out, --tum, --kitti or --plot: the trajectory is computed "
+                 "but not written\n";
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());

@@ -17,12 +17,16 @@ void TrajectoryOutputs::AddFlags(CLI::App* cmd) {
   cmd->add_option("--out", csv, "trajectory CSV, written frame by frame (- = standard output)");
   cmd->add_option("--tum", tum,
                   "trajectory in TUM format (timestamp tx ty tz qx qy qz qw; - = standard output)");
+  cmd->add_option("--kitti", kitti,
+                  "trajectory in KITTI format (3x4 camera-to-world matrix a line, no timestamps; - "
+                  "= standard output)");
 }
 
 std::vector<std::unique_ptr<TrajectoryWriter>> TrajectoryOutputs::Open() const {
   std::vector<std::unique_ptr<TrajectoryWriter>> writers;
   if (!csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(csv));
   if (!tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(tum));
+  if (!kitti.empty()) writers.push_back(std::make_unique<KittiTrajectoryWriter>(kitti));
   return writers;
 }
 
@@ -33,7 +37,7 @@ void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) con
     if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
     return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
   };
-  for (const std::string* out : {&csv, &tum}) {
+  for (const std::string* out : {&csv, &tum, &kitti}) {
     if (out->empty()) continue;
     for (const std::string& in : inputs) {
       std::error_code ec;
@@ -42,8 +46,14 @@ void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) con
                                  "); write the trajectory elsewhere");
     }
   }
-  if (!csv.empty() && !tum.empty() && same(csv, tum))
-    throw std::runtime_error(csv + ": given for both --out and --tum");
+  const std::pair<const std::string*, const char*> outputs[] = {
+      {&csv, "--out"}, {&tum, "--tum"}, {&kitti, "--kitti"}};
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = i + 1; j < 3; ++j)
+      if (!outputs[i].first->empty() && !outputs[j].first->empty() &&
+          same(*outputs[i].first, *outputs[j].first))
+        throw std::runtime_error(*outputs[i].first + ": given for both " + outputs[i].second +
+                                 " and " + outputs[j].second);
 }
 
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {

@@ -21,12 +21,12 @@
 namespace rgbdvo::cli {
 
 struct TrajectoryOutputs {
-  std::string csv, tum;
-  void AddFlags(CLI::App* cmd);  // --out, --tum
+  std::string csv, tum, kitti;
+  void AddFlags(CLI::App* cmd);  // --out, --tum, --kitti
   // Throws naming the file when an output is one of `inputs` (existing files; others are
   // ignored) or both outputs are the same file: writing would destroy what the run reads.
   void RefuseInputs(const std::vector<std::string>& inputs) const;
-  bool UsesStdout() const { return csv == "-" || tum == "-"; }
+  bool UsesStdout() const { return csv == "-" || tum == "-" || kitti == "-"; }
   // A writer per file given; throws naming a file that cannot be written.
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
 };

@@ -65,4 +65,17 @@ void TumTrajectoryWriter::Write(const FrameResult& r) {
   FlushOrThrow(out_, path_);
 }
 
+KittiTrajectoryWriter::KittiTrajectoryWriter(const std::string& path) : path_(path) {
+  OpenOrThrow(out_, path_);
+  out_ << std::setprecision(9);
+  out_.unsetf(std::ios::floatfield);  // general notation: KITTI tools read either
+}
+
+void KittiTrajectoryWriter::Write(const FrameResult& r) {
+  const Eigen::Matrix4d M = r.world_from_cam.matrix();
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 4; ++col) out_ << M(row, col) << (row == 2 && col == 3 ? '\n' : ' ');
+  FlushOrThrow(out_, path_);
+}
+
 }  // namespace rgbdvo

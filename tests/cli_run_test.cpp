@@ -318,3 +318,29 @@ TEST_CASE("rgbdvo run warns when the depth scale does not fit the data") {
   CHECK_THAT(out, Catch::Contains("rgbdvo: warning: frame 0: the depth steps") &&
                       Catch::Contains("5.00 times too large"));
 }
+
+TEST_CASE("rgbdvo run --kitti writes the same poses as --tum, as 3x4 matrices") {
+  const std::string dir = SyntheticFolder();
+  int code = 0;
+  const std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --quiet --tum " + dir +
+                                  "/t.txt --kitti " + dir + "/k.txt",
+                              &code);
+  INFO(out);
+  REQUIRE(code == 0);
+  const std::vector<StampedPose> tum = ReadTrajectory(dir + "/t.txt").poses;
+  const std::vector<std::string> kitti = Lines(dir + "/k.txt");
+  REQUIRE(kitti.size() == tum.size());
+  for (size_t k = 0; k < kitti.size(); ++k) {
+    std::istringstream row(kitti[k]);
+    Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) row >> M(r, c);
+    REQUIRE(row);
+    std::string rest;
+    CHECK_FALSE(row >> rest);  // exactly 12 numbers
+    Rigid3d T;
+    T.matrix() = M;
+    // TUM rounds to 1e-6 m and 1e-7 in the quaternion.
+    CHECK(RigidNear(T, tum[k].world_from_cam, 1e-4, 2e-6));
+  }
+}

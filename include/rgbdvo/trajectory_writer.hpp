@@ -39,4 +39,18 @@ class TumTrajectoryWriter : public TrajectoryWriter {
   std::ofstream out_;
 };
 
+// KITTI odometry: the top three rows of the 4x4 camera-to-world matrix, row-major, 12 numbers a
+// line (`r11 r12 r13 tx r21 r22 r23 ty r31 r32 r33 tz`), a line per frame, no timestamps (the
+// frames' order is the time).
+class KittiTrajectoryWriter : public TrajectoryWriter {
+ public:
+  // "-" = standard output. Throws naming the file when it cannot be opened.
+  explicit KittiTrajectoryWriter(const std::string& path);
+  void Write(const FrameResult& result) override;
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+};
+
 }  // namespace rgbdvo
