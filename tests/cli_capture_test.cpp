@@ -308,3 +308,36 @@ TEST_CASE("rgbdvo run on a fakenect folder: truncated depth stops the run, rows 
   CHECK_THAT(out, Catch::Contains(names[8]) && Catch::Contains("truncated"));
   CHECK(Lines(rec + "/t.csv").size() == 3);  // header + frames 0 and 1
 }
+
+TEST_CASE("rgbdvo capture killed with SIGKILL leaves a recording that lists only complete files") {
+  const std::string rec = Recording();
+  const std::string dir = MakeTempDir("capture_kill");
+  // As the Ctrl-C test, with 200 ms per frame so the kill lands mid-recording.
+  const std::string script =
+      "lib=$(sed -n 's/.*LD_LIBRARY_PATH=\"\\([^:]*\\):.*/\\1/p' \"$(command -v fakenect)\" | head "
+      "-n 1); "
+      "FAKENECT_PATH=" +
+      rec + " LD_LIBRARY_PATH=$lib " + RgbdvoExe() + " capture --calib " + rec +
+      "/calib.yaml --no-drop --debug-frame-delay-ms 200 --record " + dir + "/out --out " + dir +
+      "/t.csv & pid=$!; "
+      "for i in $(seq 600); do [ \"$(cat " +
+      dir +
+      "/t.csv 2>/dev/null | wc -l)\" -ge 4 ] "
+      "&& break; sleep 0.1; done; kill -KILL $pid; wait $pid; echo exit=$?";
+  std::string out;
+  RunCommand("sh -c '" + std::regex_replace(script, std::regex("'"), "'\\''") + "'", &out);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("exit=137"));
+  // Every file INDEX.txt names is there, whole: its header's size of pixels follows it.
+  const std::vector<std::string> names = ReadFakenectIndex(dir + "/out/INDEX.txt");
+  REQUIRE(names.size() >= 3);
+  for (const std::string& name : names) {
+    INFO(name);
+    const std::string path = dir + "/out/" + name;
+    REQUIRE(fs::exists(path));
+    if (name[0] == 'r') CHECK(ReadFakenectColor(path).total() == 640 * 480);
+    if (name[0] == 'd') CHECK(ReadFakenectDepth(path).total() == 640 * 480);
+  }
+  for (const std::string& row : Lines(dir + "/t.csv"))
+    CHECK(std::count(row.begin(), row.end(), ',') == 11);
+}
