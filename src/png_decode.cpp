@@ -12,8 +12,10 @@
 #include <cstring>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace rgbdvo {
 namespace {
@@ -257,6 +259,34 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
   return r;
 }
 
+std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>& bytes) {
+  if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return std::nullopt;
+  size_t pos = 2;
+  while (pos + 4 <= bytes.size()) {
+    if (bytes[pos] != 0xFF) return std::nullopt;  // not at a marker: not ours to judge
+    const uint8_t marker = bytes[pos + 1];
+    if (marker == 0xFF) {  // fill byte
+      ++pos;
+      continue;
+    }
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) {  // no length
+      pos += 2;
+      continue;
+    }
+    if (marker == 0xD9 || marker == 0xDA) return std::nullopt;  // end, or scan data before a frame
+    const size_t length = size_t{bytes[pos + 2]} << 8 | bytes[pos + 3];
+    const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
+                       marker != 0xCC;  // SOF0-SOF15 but DHT, JPG, DAC
+    if (frame && length >= 7 && pos + 9 <= bytes.size()) {
+      const uint32_t height = uint32_t{bytes[pos + 5]} << 8 | bytes[pos + 6];
+      const uint32_t width = uint32_t{bytes[pos + 7]} << 8 | bytes[pos + 8];
+      return std::make_pair(width, height);
+    }
+    pos += 2 + length;
+  }
+  return std::nullopt;
+}
+
 cv::Mat ReadImage(const std::string& path, int imread_flags) {
   std::vector<uint8_t> bytes;
   if (FILE* f = std::fopen(path.c_str(), "rb")) {
@@ -279,6 +309,11 @@ cv::Mat ReadImage(const std::string& path, int imread_flags) {
   }
   PngDecodeResult r = DecodePng(bytes, imread_flags);
   if (r.too_large) throw std::runtime_error(path + ": " + r.reason);
+  if (const auto size = JpegSize(bytes);
+      size && (size->first > kMaxImageSide || size->second > kMaxImageSide))
+    throw std::runtime_error(path + ": JPEG header claims " + std::to_string(size->first) + "x" +
+                             std::to_string(size->second) + " pixels, more than the " +
+                             std::to_string(kMaxImageSide) + " a side read here");
   return r.success ? r.image : cv::imread(path, imread_flags);
 }
 

@@ -227,3 +227,27 @@ TEST_CASE("ReadImage refuses a PNG claiming more pixels than any sensor before a
   CHECK_FALSE(s.too_large);
   CHECK_THAT(s.reason, Catch::Contains("too short"));
 }
+
+TEST_CASE("ReadImage refuses a JPEG claiming more pixels than any sensor; reads a normal one") {
+  const std::string dir = test::MakeTempDir("jpeg_size");
+  cv::Mat img(48, 64, CV_8UC3, cv::Scalar(40, 90, 160));
+  std::vector<uint8_t> jpeg;
+  REQUIRE(cv::imencode(".jpg", img, jpeg));
+  REQUIRE(JpegSize(jpeg) == std::make_pair(uint32_t{64}, uint32_t{48}));
+  WriteBytes(dir + "/ok.jpg", jpeg);
+  CHECK(ReadImage(dir + "/ok.jpg", cv::IMREAD_COLOR).size() == cv::Size(64, 48));
+  // The same file with its frame header claiming 40000 x 30000.
+  for (size_t i = 2; i + 9 < jpeg.size(); ++i)
+    if (jpeg[i] == 0xFF && jpeg[i + 1] == 0xC0) {
+      jpeg[i + 5] = 30000 >> 8;
+      jpeg[i + 6] = 30000 & 0xFF;
+      jpeg[i + 7] = 40000 >> 8;
+      jpeg[i + 8] = 40000 & 0xFF;
+      break;
+    }
+  REQUIRE(JpegSize(jpeg) == std::make_pair(uint32_t{40000}, uint32_t{30000}));
+  WriteBytes(dir + "/huge.jpg", jpeg);
+  CHECK_THROWS_WITH(ReadImage(dir + "/huge.jpg", cv::IMREAD_COLOR),
+                    Catch::Contains("huge.jpg") && Catch::Contains("40000x30000"));
+  CHECK_FALSE(JpegSize({0xFF, 0xD8, 0xFF}));  // truncated: no answer, no crash
+}

@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rgbdvo {
@@ -33,10 +35,14 @@ struct PngDecodeResult {
 // corrupt is a success=false result, never an exception, and left to cv::imread to judge.
 PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags);
 
+// Width and height from a JPEG's frame header (SOF0-SOF15), nullopt when `bytes` is no JPEG or
+// has none before its scan data.
+std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>& bytes);
+
 // cv::imread(path, flags) with DecodePng for the PNGs it handles: the same image, empty when the
 // file is missing, corrupt or truncated (then cv::imread itself has had the last word). Throws
 // std::runtime_error naming the file and the limit for a file above kMaxImageFileBytes or a PNG
-// claiming more than kMaxImageSide pixels a side.
+// or JPEG claiming more than kMaxImageSide pixels a side (other formats: OpenCV's own limit).
 cv::Mat ReadImage(const std::string& path, int imread_flags);
 
 }  // namespace rgbdvo

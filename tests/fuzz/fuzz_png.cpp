@@ -1,4 +1,5 @@
-// The PNG decoder (ours, on libdeflate) as cv::imread would be asked: colour and unchanged. Each
+// The PNG decoder (ours, on libdeflate) as cv::imread would be asked: colour and unchanged, and
+// the JPEG header reader. Each
 // input is decoded as it is and with every chunk's CRC made right, so that mutations also reach
 // the inflate, filter and sample code behind the CRC check.
 #include <libdeflate.h>
@@ -26,6 +27,7 @@ uint32_t BigEndian32(const uint8_t* p) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::vector<uint8_t> bytes(data, data + size);
+  rgbdvo::JpegSize(bytes);
   Decode(bytes);
   for (size_t pos = 8; pos + 12 <= bytes.size();) {
     const uint32_t len = BigEndian32(&bytes[pos]);
