@@ -27,6 +27,7 @@ struct RunArgs {
   RunOptions run;
   SourceOptions source;
   FrameRange range;
+  bool depth_scale_given = false;
   std::unique_ptr<OdometryFlags> odometry_flags;
 };
 
@@ -39,7 +40,11 @@ struct PoseRecorder : TrajectoryWriter {
 int Run(const RunArgs& a) {
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
   const Calibration calib = LoadCalibration(a.calib);
-  std::unique_ptr<FrameSource> recording = OpenRecording(a.folder, a.source);
+  // The depth scale: --depth-scale, else the calibration's, else TUM's 5000.
+  SourceOptions source_options = a.source;
+  if (!a.depth_scale_given && calib.depth_units_per_m > 0)
+    source_options.tum.depth_units_per_m = calib.depth_units_per_m;
+  std::unique_ptr<FrameSource> recording = OpenRecording(a.folder, source_options);
   if (auto* tum = dynamic_cast<TumSource*>(recording.get()); tum && !tum->unpaired().empty()) {
     std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
               << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
@@ -110,8 +115,11 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("folder", args->folder, "recording folder")->required();
   cmd->add_option("--calib", args->calib, "calibration YAML (see calib/)")->required();
   args->outputs.AddFlags(cmd);
-  cmd->add_option("--depth-scale", args->source.tum.depth_units_per_m, "TUM depth units per metre")
-      ->capture_default_str();
+  cmd->add_option("--depth-scale", args->source.tum.depth_units_per_m,
+                  "TUM depth units per metre (default: the calibration's depth_units_per_m, else "
+                  "5000)")
+      ->capture_default_str()
+      ->each([args](const std::string&) { args->depth_scale_given = true; });
   cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")
       ->capture_default_str();
   cmd->add_option("--start", args->range.start,

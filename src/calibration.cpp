@@ -65,6 +65,8 @@ void Calibration::Check() const {
   Require(fx > 0 && fy > 0, "K_ir focal lengths fx, fy must be > 0");
   Require(min_depth_m >= 0, "min_depth_m must be >= 0");
   Require(max_depth_m > min_depth_m, "max_depth_m must be > min_depth_m");
+  Require(std::isfinite(depth_units_per_m) && depth_units_per_m >= 0,
+          "depth_units_per_m must be > 0 (or 0: not given)");
 }
 
 Calibration LoadCalibration(const std::string& path) {
@@ -113,6 +115,11 @@ Calibration LoadCalibration(const std::string& path) {
   }
   c.min_depth_m = ReadNumber(fs, "min_depth_m", path);
   c.max_depth_m = ReadNumber(fs, "max_depth_m", path);
+  if (!fs["depth_units_per_m"].empty()) {
+    c.depth_units_per_m = ReadNumber(fs, "depth_units_per_m", path);
+    if (!(c.depth_units_per_m > 0))
+      throw std::runtime_error(path + ": field 'depth_units_per_m' must be > 0");
+  }
   if (!fs["description"].empty()) c.description = static_cast<std::string>(fs["description"]);
   try {
     c.Check();
@@ -141,6 +148,10 @@ void SaveCalibration(const Calibration& c, const std::string& path) {
     fs << "dist_ir" << cv::Mat(1, 5, CV_64F, const_cast<double*>(c.dist_ir.data())).clone();
   }
   fs << "min_depth_m" << c.min_depth_m << "max_depth_m" << c.max_depth_m;
+  if (c.depth_units_per_m > 0) {
+    fs.writeComment("16-bit depth images: units per metre");
+    fs << "depth_units_per_m" << c.depth_units_per_m;
+  }
 }
 
 }  // namespace rgbdvo

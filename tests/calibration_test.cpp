@@ -24,6 +24,7 @@ TEST_CASE("Calibration YAML round-trips every field") {
   c.max_depth_m = 4.5;
   c.description = "test sensor";
   c.dist_ir = {0.26, -0.95, -0.005, 0.0026, 1.16};
+  c.depth_units_per_m = 5000;
   const std::string path = test::MakeTempDir("calib") + "/c.yaml";
   SaveCalibration(c, path);
   const Calibration r = LoadCalibration(path);
@@ -39,6 +40,14 @@ TEST_CASE("Calibration YAML round-trips every field") {
   CHECK(r.max_depth_m == c.max_depth_m);
   CHECK(r.description == c.description);
   CHECK(r.dist_ir == c.dist_ir);
+  CHECK(r.depth_units_per_m == 5000);
+  // Optional: a file without it says 0 (not given); a non-positive one is an error.
+  Calibration plain = c;
+  plain.depth_units_per_m = 0;
+  SaveCalibration(plain, path);
+  CHECK(LoadCalibration(path).depth_units_per_m == 0);
+  std::ofstream(path, std::ios::app) << "depth_units_per_m: -5.\n";
+  CHECK_THROWS_WITH(LoadCalibration(path), Catch::Contains("depth_units_per_m"));
 }
 
 TEST_CASE("Shipped calibration files load") {
@@ -47,6 +56,9 @@ TEST_CASE("Shipped calibration files load") {
     const Calibration c = LoadCalibration(test::SourceDir() + "/calib/" + name + ".yaml");
     CHECK(c.fx > 400);
   }
+  for (const char* name : {"tum_fr1", "tum_fr2", "tum_fr3"})
+    CHECK(LoadCalibration(test::SourceDir() + "/calib/" + name + ".yaml").depth_units_per_m ==
+          5000);
   const Calibration paper = LoadCalibration(test::SourceDir() + "/calib/fiala_ufkes_2011.yaml");
   CHECK(paper.fx == 475);
   CHECK(paper.fy == 475);

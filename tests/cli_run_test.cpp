@@ -344,3 +344,18 @@ TEST_CASE("rgbdvo run --kitti writes the same poses as --tum, as 3x4 matrices") 
     CHECK(RigidNear(T, tum[k].world_from_cam, 1e-4, 2e-6));
   }
 }
+
+TEST_CASE("rgbdvo run takes the depth scale from the calibration unless --depth-scale is given") {
+  const std::string dir = SyntheticFolder();
+  const std::string calib = SyntheticCalib(dir);
+  std::ofstream(calib, std::ios::app) << "depth_units_per_m: 2500.\n";
+  int code = 0;
+  std::string out = Run(dir + " --calib " + calib + " --max-frames 1", &code);
+  CHECK(code == 0);
+  CHECK_THAT(out, Catch::Contains("depth 2500 units per metre"));
+  out = Run(dir + " --calib " + calib + " --max-frames 1 --depth-scale 5000", &code);
+  CHECK(code == 0);
+  CHECK_THAT(out, Catch::Contains("depth 5000 units per metre"));
+  out = Run(dir + " --calib " + SyntheticCalib(dir) + " --max-frames 1", &code);  // not given
+  CHECK_THAT(out, Catch::Contains("depth 5000 units per metre"));
+}

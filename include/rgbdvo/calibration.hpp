@@ -2,7 +2,7 @@
 // The camera calibration of paper section 2.1: the linear colour->IR mapping (eq. 1), the IR
 // (depth) camera intrinsics K_ir (eq. 2) and the usable depth range. Stored as YAML through
 // cv::FileStorage with top-level keys A, B, C, D, K_ir (3x3), min_depth_m, max_depth_m and the
-// optional dist_ir (1x5: k1 k2 p1 p2 k3).
+// optional dist_ir (1x5: k1 k2 p1 p2 k3) and depth_units_per_m.
 
 #include <array>
 #include <string>
@@ -26,6 +26,10 @@ struct Calibration {
   // Depths outside [min_depth_m, max_depth_m] are treated as missing, metres.
   double min_depth_m = 0.4;
   double max_depth_m = 8.0;
+  // Units per metre of 16-bit depth images stored with this camera (TUM: 5000; 0 = not given).
+  // A recording's depth scale belongs to the camera that made it, not to a command line:
+  // `rgbdvo run` takes it from here unless --depth-scale is given.
+  double depth_units_per_m = 0;
   // Free text kept with the file (where the numbers came from).
   std::string description;
 
