@@ -1,11 +1,9 @@
 // `rgbdvo capture`: visual odometry live from a Kinect v1 (libfreenect), optionally recording.
 #include <unistd.h>
 
-#include <chrono>
 #include <iostream>
 #include <memory>
 #include <sstream>
-#include <thread>
 
 #include "commands.hpp"
 #include "rgbdvo/calibration.hpp"
@@ -67,8 +65,7 @@ int Capture(CaptureArgs& a) {
       warned_at = dropped;
     }
     status.Update(r, ", " + std::to_string(dropped) + " dropped");
-    if (a.frame_delay_ms > 0)
-      std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
+    DelayFrame(a.frame_delay_ms);
   };
   const RunSummary summary =
       RunOdometry(source, odometry, writer_ptrs, on_frame, a.run, PrintWarning(progress));
@@ -111,10 +108,7 @@ void AddCaptureCommand(CLI::App& app) {
                 "wait for the odometry instead of dropping frames (for fakenect replays)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
   AddThreadsFlag(cmd, &args->run);
-  cmd->add_option("--debug-frame-delay-ms", args->frame_delay_ms,
-                  "for tests: sleep this long after each frame, as an odometry that much slower")
-      ->check(CLI::NonNegativeNumber)
-      ->group("");  // hidden from --help
+  AddFrameDelayFlag(cmd, &args->frame_delay_ms);
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Capture(*args);

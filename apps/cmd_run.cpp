@@ -2,11 +2,9 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <thread>
 
 #include "commands.hpp"
 #include "rgbdvo/calibration.hpp"
@@ -80,8 +78,7 @@ int Run(const RunArgs& a) {
       stoppable, odometry, writer_ptrs,
       [&](const FrameResult& r) {
         status.Update(r);
-        if (a.frame_delay_ms > 0)
-          std::this_thread::sleep_for(std::chrono::milliseconds(a.frame_delay_ms));
+        DelayFrame(a.frame_delay_ms);
       },
       a.run, PrintWarning(status.redrawn()));
   status.Finish();
@@ -134,10 +131,7 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
   AddThreadsFlag(cmd, &args->run);
   cmd->add_flag("--timing", args->timing, "also print milliseconds per frame for each stage");
-  cmd->add_option("--debug-frame-delay-ms", args->frame_delay_ms,
-                  "for tests: sleep this long after each frame, as an odometry that much slower")
-      ->check(CLI::NonNegativeNumber)
-      ->group("");  // hidden from --help
+  AddFrameDelayFlag(cmd, &args->frame_delay_ms);
   args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
   cmd->callback([args] {
     const int code = Run(*args);

@@ -10,6 +10,7 @@
 #include <opencv2/core/utility.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace rgbdvo::cli {
 
@@ -54,6 +55,17 @@ void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) con
           same(*outputs[i].first, *outputs[j].first))
         throw std::runtime_error(*outputs[i].first + ": given for both " + outputs[i].second +
                                  " and " + outputs[j].second);
+}
+
+void AddFrameDelayFlag(CLI::App* cmd, int* ms) {
+  cmd->add_option("--debug-frame-delay-ms", *ms,
+                  "for tests: sleep this long after each frame, as an odometry that much slower")
+      ->check(CLI::NonNegativeNumber)
+      ->group("");  // hidden from --help
+}
+
+void DelayFrame(int ms) {
+  if (ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(ms));
 }
 
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {

@@ -31,6 +31,11 @@ struct TrajectoryOutputs {
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
 };
 
+// The hidden --debug-frame-delay-ms into *ms (for tests: an odometry that much slower), and the
+// sleep it asks for after each frame.
+void AddFrameDelayFlag(CLI::App* cmd, int* ms);
+void DelayFrame(int ms);
+
 // --threads into options->threads.
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options);
 // Turns OpenCV's own parallel loops off: our threads (one, or the feature workers) are the

@@ -306,19 +306,19 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     }
     r.reason += "+" + aligned.reason;
   }
-  Rigid3d world_from_cur =
-      options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
-  world_from_cur.linear() = NearestRotation(world_from_cur.linear());
-  r.world_from_cam = world_from_cur;
+  r.world_from_cam = options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
+  r.world_from_cam.linear() = NearestRotation(r.world_from_cam.linear());
   // A frame with fewer points than a verified motion needs inliers (a blank wall, a covered
   // lens) cannot be matched by the frames after it: no restart from it; the next one is tried.
-  const auto points = std::count_if(cur.points.begin(), cur.points.end(),
-                                    [](const auto& p) { return p.has_value(); });
-  const bool can_restart = points >= options_.verify.min_inliers;
+  const auto can_restart = [&] {
+    return std::count_if(cur.points.begin(), cur.points.end(), [](const auto& p) {
+             return p.has_value();
+           }) >= options_.verify.min_inliers;
+  };
   if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run &&
-      can_restart) {
+      can_restart()) {
     // The references are out of reach: restart from this frame at the pose just reported.
-    cur.world_from_cam = world_from_cur;
+    cur.world_from_cam = r.world_from_cam;
     key_ = last_ = std::move(cur);
     has_before_ = false;
     rejected_run_ = 0;

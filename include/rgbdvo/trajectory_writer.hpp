@@ -15,42 +15,36 @@ class TrajectoryWriter {
   virtual void Write(const FrameResult& result) = 0;
 };
 
-// CSV: header `frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status`, a row per frame.
-class CsvTrajectoryWriter : public TrajectoryWriter {
- public:
-  // "-" = standard output. Throws naming the file when it cannot be opened.
-  explicit CsvTrajectoryWriter(const std::string& path);
-  void Write(const FrameResult& result) override;
-
- private:
+// A trajectory written to a file ("-" = standard output), one flushed row at a time.
+class FileTrajectoryWriter : public TrajectoryWriter {
+ protected:
+  explicit FileTrajectoryWriter(const std::string& path);  // throws naming the file
+  void EndRow();  // flushes; throws naming the file when the write failed (disk full, ...)
   std::string path_;
   std::ofstream out_;
 };
 
-// TUM: `timestamp tx ty tz qx qy qz qw`, a line per frame (TUM benchmark tools' format).
-class TumTrajectoryWriter : public TrajectoryWriter {
+// CSV: header `frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status`, a row per frame.
+class CsvTrajectoryWriter : public FileTrajectoryWriter {
  public:
-  // "-" = standard output. Throws naming the file when it cannot be opened.
+  explicit CsvTrajectoryWriter(const std::string& path);
+  void Write(const FrameResult& result) override;
+};
+
+// TUM: `timestamp tx ty tz qx qy qz qw`, a line per frame (TUM benchmark tools' format).
+class TumTrajectoryWriter : public FileTrajectoryWriter {
+ public:
   explicit TumTrajectoryWriter(const std::string& path);
   void Write(const FrameResult& result) override;
-
- private:
-  std::string path_;
-  std::ofstream out_;
 };
 
 // KITTI odometry: the top three rows of the 4x4 camera-to-world matrix, row-major, 12 numbers a
 // line (`r11 r12 r13 tx r21 r22 r23 ty r31 r32 r33 tz`), a line per frame, no timestamps (the
 // frames' order is the time).
-class KittiTrajectoryWriter : public TrajectoryWriter {
+class KittiTrajectoryWriter : public FileTrajectoryWriter {
  public:
-  // "-" = standard output. Throws naming the file when it cannot be opened.
   explicit KittiTrajectoryWriter(const std::string& path);
   void Write(const FrameResult& result) override;
-
- private:
-  std::string path_;
-  std::ofstream out_;
 };
 
 }  // namespace rgbdvo
