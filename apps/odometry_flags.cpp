@@ -108,6 +108,10 @@ OdometryFlags::OdometryFlags(CLI::App* cmd) : cmd_(cmd) {
   AddSwitch(
       "--depth-fallback", [](O& o) -> bool& { return o.depth_fallback; }, true,
       "when features fail, align the depth images by ICP (default; not in --preset paper)");
+  Add<int>(
+      "--depth-term-step", [](O& o) -> int& { return o.depth_term_step; },
+      "also align the depth surfaces at every N-th pixel in the refinement (e.g. 16; "
+      "default 0 = features only)");
   AddSwitch(
       "--no-depth-delay", [](O& o) -> bool& { return o.compensate_depth_delay; }, false,
       "read depth at the keypoint's own pixel, not moved over the colour-depth time offset");

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/depth_term.hpp"
 #include "rgbdvo/motion_prior.hpp"
 #include "rgbdvo/point_pairs.hpp"
 
@@ -29,6 +30,7 @@ void OdometryOptions::Check() const {
     throw std::invalid_argument("keyframe_inlier_ratio must be in [0, 1]");
   if (!(guided_radius_px >= 0)) throw std::invalid_argument("guided_radius_px must be >= 0");
   if (max_rejected_run < 0) throw std::invalid_argument("max_rejected_run must be >= 0");
+  if (depth_term_step < 0) throw std::invalid_argument("depth_term_step must be >= 0");
 }
 
 OdometryOptions PresetOptions(const std::string& name) {
@@ -82,6 +84,7 @@ std::string OdometryOptions::ToString() const {
     << "undistort = " << (undistort ? "true" : "false") << "\n"
     << "max_rejected_run = " << max_rejected_run << "\n"
     << "depth_fallback = " << (depth_fallback ? "true" : "false") << "\n"
+    << "depth_term_step = " << depth_term_step << "\n"
     << "predict_failed_frames = " << (predict_failed_frames ? "true" : "false") << "\n"
     << "seed = " << seed << "\n";
   return s.str();
@@ -156,14 +159,22 @@ RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference
     const double f = 0.5 * (calib_.fx + calib_.fy);
     Rigid3d T =
         RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
-    const RefineOptions scaled = ScaleNoise(
-        options_.refine, EstimateNoiseScale(options_.refine, f, pairs, ransac.inliers, T));
+    const NoiseScale noise = EstimateNoiseScale(options_.refine, f, pairs, ransac.inliers, T);
+    const RefineOptions scaled = ScaleNoise(options_.refine, noise);
     std::vector<int> inliers;
     for (size_t k = 0; k < pairs.size(); ++k)
       if (WhitenedError(scaled, f, pairs[k], T) < scaled.inlier_sigmas)
         inliers.push_back(static_cast<int>(k));
     if (inliers.size() >= 3) {
-      T = RefineMotion(scaled, f, pairs, inliers, T).prev_from_cur;
+      std::optional<DepthPlaneTerm> dense;
+      if (options_.depth_term_step > 0 && !ref.depth_m.empty() && !cur.depth_points.empty()) {
+        dense.emplace(calib_, depth_rays_, ref.depth_m, ref.depth_from_cam, cur.depth_points,
+                      options_.refine.depth_noise_coeff, options_.lifting.max_depth_jump_ratio);
+        // The features' pixel scale measures the frame's motion blur and rolling shutter; the
+        // depth camera saw the same motion, so its surfaces are trusted no better.
+        dense->ScaleNoise(std::max(EstimateDepthTermScale(*dense, T), noise.pixel));
+      }
+      T = RefineMotion(scaled, f, pairs, inliers, T, dense ? &*dense : nullptr).prev_from_cur;
       ransac.inliers = std::move(inliers);
       ransac.prev_from_cur = T;
     }
@@ -254,7 +265,14 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   cur.features = std::move(features);
   cur.frame = frame.index;
   cur.color_timestamp = frame.color_timestamp;
-  if (options_.depth_fallback) cur.depth_m = frame.depth_m.clone();
+  if (options_.depth_fallback || options_.depth_term_step > 0) cur.depth_m = frame.depth_m.clone();
+  if (options_.depth_term_step > 0) {
+    if (depth_rays_.size() != frame.depth_m.size())
+      depth_rays_ = DepthRays(calib_, frame.depth_m.size());
+    cur.depth_from_cam = depth_from_color;
+    cur.depth_points = SampleDepthPoints(depth_rays_, frame.depth_m, depth_from_color.inverse(),
+                                         options_.depth_term_step);
+  }
   r.times.lifting += Since(t0);
 
   if (!started_) {

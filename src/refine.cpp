@@ -39,9 +39,29 @@ double Huber(double e, double k) { return e <= k ? 0.5 * e * e : k * (e - 0.5 * 
 // Robust cost and, if H/g are given, the Gauss-Newton system for a left perturbation
 // prev_from_cur <- Exp(delta) * prev_from_cur, delta = (omega, v).
 double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
-                const std::vector<int>& idx, const Rigid3d& T, Mat6* H, Vec6* g) {
+                const std::vector<int>& idx, const DepthPlaneTerm* dense, const Rigid3d& T, Mat6* H,
+                Vec6* g) {
   double cost = 0;
   if (H) H->setZero(), g->setZero();
+  if (dense) {
+    // Truncated Huber: a point beyond inlier_sigmas (an occlusion, a moved object) or on no
+    // reading costs as much as one at the cut and pulls nothing.
+    const double k = o.huber_sigmas, cut = o.inlier_sigmas, cut_cost = Huber(cut, k);
+    Eigen::Matrix<double, 1, 6> J;
+    for (size_t i = 0; i < dense->size(); ++i) {
+      double r;
+      if (!dense->Residual(i, T, &r, H ? &J : nullptr) || std::abs(r) > cut) {
+        cost += cut_cost;
+        continue;
+      }
+      const double e = std::abs(r);
+      cost += Huber(e, k);
+      if (!H) continue;
+      const double w = e <= k ? 1.0 : k / e;
+      *H += w * J.transpose() * J;
+      *g += w * J.transpose() * r;
+    }
+  }
   const Eigen::Matrix3d Rt = T.linear().transpose();
   for (int k : idx) {
     const PointPair& p = pairs[k];
@@ -68,7 +88,8 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
       *g += w * J.transpose() * r;
     }
   }
-  return idx.empty() ? 0 : cost / static_cast<double>(idx.size());
+  const size_t n = idx.size() + (dense ? dense->size() : 0);
+  return n == 0 ? 0 : cost / static_cast<double>(n);
 }
 
 Rigid3d Apply(const Vec6& d, const Rigid3d& T) {
@@ -152,13 +173,14 @@ RefineOptions ScaleNoise(RefineOptions o, const NoiseScale& scale) {
 }
 
 RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
-                          const std::vector<int>& idx, const Rigid3d& initial) {
+                          const std::vector<int>& idx, const Rigid3d& initial,
+                          const DepthPlaneTerm* dense) {
   RefineResult result;
   result.prev_from_cur = initial;
   if (idx.size() < 3) return result;
   Mat6 H;
   Vec6 g;
-  double cost = Evaluate(o, f, pairs, idx, initial, &H, &g);
+  double cost = Evaluate(o, f, pairs, idx, dense, initial, &H, &g);
   result.initial_cost = cost;
   double lambda = 1e-4;
   for (int it = 0; it < o.max_iterations; ++it) {
@@ -170,7 +192,7 @@ RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<Po
     const Rigid3d candidate = Apply(delta, result.prev_from_cur);
     Mat6 H2;
     Vec6 g2;
-    const double new_cost = Evaluate(o, f, pairs, idx, candidate, &H2, &g2);
+    const double new_cost = Evaluate(o, f, pairs, idx, dense, candidate, &H2, &g2);
     if (new_cost < cost) {
       const bool converged = cost - new_cost < 1e-9 * cost || delta.norm() < 1e-10;
       result.prev_from_cur = candidate;

@@ -58,6 +58,12 @@ struct OdometryOptions {
   // where its point lies in the depth image, moved by the predicted velocity over the time
   // difference (LiftKeypointsAcrossTime); false = at the same pixel (the paper).
   bool compensate_depth_delay = true;
+  // > 0: the final refinement also aligns the depth surfaces (DepthPlaneTerm): point-to-plane
+  // residuals of the current depth image's points on a grid of every n-th pixel against the
+  // reference's depth image. Off by default: at every 16th pixel it lowers ATE on fr1/xyz and
+  // fr3/teddy (full rate and thinned) by 10-25 %, but raises fr1/desk's fast turn's rotational
+  // RPE by a fifth, past the dense peers (docs/benchmarks.md). 0 = feature residuals only.
+  int depth_term_step = 0;
   // Use the calibration's lens distortion (dist_ir) when lifting pixels (the paper: no).
   bool undistort = true;
   uint32_t seed = 42;  // RANSAC random generator seed (fixed: runs are reproducible)
@@ -128,7 +134,9 @@ class Odometry {
   struct Reference {
     Features features;
     KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once
-    cv::Mat depth_m;        // the depth image, for the depth fallback (empty without it)
+    cv::Mat depth_m;        // the depth image, for the depth fallback and term (else empty)
+    Rigid3d depth_from_cam = Rigid3d::Identity();  // the depth camera at the depth image's time
+    std::vector<Eigen::Vector3d> depth_points;     // SampleDepthPoints, in this camera
     Rigid3d world_from_cam = Rigid3d::Identity();
     int frame = -1;
     double color_timestamp = 0;  // seconds (Frame::color_timestamp)
@@ -151,6 +159,7 @@ class Odometry {
   SiftExtractor extractor_;
   Rng rng_;
   std::unique_ptr<DepthAligner> depth_aligner_;  // with depth_fallback
+  cv::Mat depth_rays_;                           // DepthRays, with depth_term_step
   bool started_ = false;
   Reference key_;   // what frames are matched against
   Reference last_;  // the last accepted frame (fallback when the keyframe fails)

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "rgbdvo/depth_term.hpp"
 #include "rgbdvo/geometry.hpp"
 #include "rgbdvo/point_pairs.hpp"
 
@@ -34,9 +35,12 @@ struct RefineResult {
 // current frame saw it, each as 2 pixel residuals (sigma = pixel_sigma) and a depth residual
 // (sigma = depth_noise_coeff * z^2). The observations are recovered from the points
 // themselves (x = X/Z, y = Y/Z, z = Z), so `focal_px` is all it needs of the camera.
+// With `dense`, its point-to-plane residuals (whitened by its own noise) are added, each with a
+// Huber cost truncated at inlier_sigmas.
 RefineResult RefineMotion(const RefineOptions& options, double focal_px,
                           const std::vector<PointPair>& pairs, const std::vector<int>& indices,
-                          const Rigid3d& initial_prev_from_cur);
+                          const Rigid3d& initial_prev_from_cur,
+                          const DepthPlaneTerm* dense = nullptr);
 
 // Whitened symmetric error of one pair under prev_from_cur (the larger of the two directions,
 // in sigmas): the inlier test that grows with depth.
