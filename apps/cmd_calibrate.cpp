@@ -5,11 +5,11 @@
 #include <opencv2/highgui.hpp>
 
 #include "commands.hpp"
-#include "rgbdvo/calibrate.hpp"
-#include "rgbdvo/calibration_clicker.hpp"
-#include "rgbdvo/frame_cache.hpp"
-#include "rgbdvo/open_source.hpp"
-#include "rgbdvo/pixel_pairs_file.hpp"
+#include "rgbdvo/calibrate/calibrate.hpp"
+#include "rgbdvo/calibrate/calibration_clicker.hpp"
+#include "rgbdvo/calibrate/pixel_pairs_file.hpp"
+#include "rgbdvo/sources/frame_cache.hpp"
+#include "rgbdvo/sources/open_source.hpp"
 
 namespace rgbdvo::cli {
 namespace {

@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "rgbdvo/calibration.hpp"
-#include "rgbdvo/kinect_source.hpp"
-#include "rgbdvo/run.hpp"
+#include "rgbdvo/capture/kinect_source.hpp"
+#include "rgbdvo/pipeline/run.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
 #include "run_common.hpp"
 
 namespace rgbdvo::cli {

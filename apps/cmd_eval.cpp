@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "rgbdvo/evaluation.hpp"
+#include "rgbdvo/evaluation/evaluation.hpp"
 
 namespace rgbdvo::cli {
 

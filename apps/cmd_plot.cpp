@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "rgbdvo/plot.hpp"
+#include "rgbdvo/evaluation/plot.hpp"
 
 namespace rgbdvo::cli {
 

@@ -7,11 +7,11 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "rgbdvo/calibration.hpp"
-#include "rgbdvo/frame_range.hpp"
-#include "rgbdvo/open_source.hpp"
-#include "rgbdvo/plot.hpp"
-#include "rgbdvo/run.hpp"
+#include "rgbdvo/evaluation/plot.hpp"
+#include "rgbdvo/pipeline/run.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/sources/frame_range.hpp"
+#include "rgbdvo/sources/open_source.hpp"
 #include "run_common.hpp"
 
 namespace rgbdvo::cli {

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "rgbdvo/synthetic_kinect.hpp"
+#include "rgbdvo/synthetic/synthetic_kinect.hpp"
 
 namespace rgbdvo::cli {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rgbdvo/odometry.hpp"
+#include "rgbdvo/odometry/odometry.hpp"
 
 namespace rgbdvo::cli {
 

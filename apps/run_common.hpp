@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "rgbdvo/calibration.hpp"
-#include "rgbdvo/frame_source.hpp"
-#include "rgbdvo/odometry.hpp"
-#include "rgbdvo/run.hpp"
-#include "rgbdvo/trajectory_writer.hpp"
+#include "rgbdvo/odometry/odometry.hpp"
+#include "rgbdvo/pipeline/run.hpp"
+#include "rgbdvo/pipeline/trajectory_writer.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/sources/frame_source.hpp"
 
 namespace rgbdvo::cli {
 

@@ -8,7 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "rgbdvo/tum_source.hpp"
+#include "rgbdvo/sources/tum_source.hpp"
 
 namespace rgbdvo::bench {
 namespace {

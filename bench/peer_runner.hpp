@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "rgbdvo/calibration.hpp"
-#include "rgbdvo/frame.hpp"
-#include "rgbdvo/geometry.hpp"
+#include "rgbdvo/geometry/geometry.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/sources/frame.hpp"
 
 namespace rgbdvo::bench {
 

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "rgbdvo/calibration.hpp"
-#include "rgbdvo/geometry.hpp"
-#include "rgbdvo/point_pairs.hpp"
-#include "rgbdvo/synthetic.hpp"
+#include "rgbdvo/geometry/geometry.hpp"
+#include "rgbdvo/odometry/point_pairs.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/synthetic/synthetic.hpp"
 
 namespace rgbdvo::test {
 

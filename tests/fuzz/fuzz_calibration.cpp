@@ -2,7 +2,7 @@
 #include <exception>
 
 #include "fuzz_input.hpp"
-#include "rgbdvo/calibration.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

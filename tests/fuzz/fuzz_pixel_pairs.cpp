@@ -2,7 +2,7 @@
 #include <exception>
 
 #include "fuzz_input.hpp"
-#include "rgbdvo/pixel_pairs_file.hpp"
+#include "rgbdvo/calibrate/pixel_pairs_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

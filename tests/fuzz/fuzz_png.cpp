@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fuzz_input.hpp"
-#include "rgbdvo/png_decode.hpp"
+#include "rgbdvo/io/image_reader.hpp"
 
 namespace {
 

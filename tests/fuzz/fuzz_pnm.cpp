@@ -2,7 +2,7 @@
 #include <exception>
 
 #include "fuzz_input.hpp"
-#include "rgbdvo/fakenect_files.hpp"
+#include "rgbdvo/sources/fakenect_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string& path = rgbdvo::fuzz::InputFile(data, size, ".pnm");

@@ -2,7 +2,7 @@
 #include <exception>
 
 #include "fuzz_input.hpp"
-#include "rgbdvo/trajectory_io.hpp"
+#include "rgbdvo/io/trajectory_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -2,7 +2,7 @@
 #include <exception>
 
 #include "fuzz_input.hpp"
-#include "rgbdvo/tum_source.hpp"
+#include "rgbdvo/sources/tum_source.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -1,0 +1,68 @@
+#pragma once
+// Refinement of a frame-to-frame motion by weighted, robust least squares on the image
+// reprojection and depth residuals of the inlier matches (beyond the paper, issue 6).
+
+#include <string>
+#include <vector>
+
+#include "rgbdvo/estimation/depth_term.hpp"
+#include "rgbdvo/estimation/point_pair.hpp"
+#include "rgbdvo/geometry/geometry.hpp"
+
+namespace rgbdvo {
+
+struct RefineOptions {
+  double pixel_sigma = 1.0;             // keypoint localisation noise, pixels
+  double depth_noise_coeff = 1.425e-3;  // Kinect depth noise sigma_z = c * z^2, 1/m
+                                        // (Khoshelham & Elberink 2012)
+  double huber_sigmas = 2.0;            // Huber threshold on a whitened residual block
+  double inlier_sigmas = 4.0;           // a pair is an inlier below this whitened error
+  int max_iterations = 10;              // Levenberg-Marquardt iterations
+  void Check() const;
+};
+
+struct RefineResult {
+  bool success = false;
+  Rigid3d prev_from_cur = Rigid3d::Identity();
+  int iterations = 0;
+  double initial_cost = 0, final_cost = 0;  // mean robust cost per pair
+  std::string Brief() const;
+};
+
+// Minimises, over prev_from_cur = (R, t), the robust (Huber) sum over the pairs named by
+// `indices` of the symmetric transfer error: p_cur moved into the previous camera against
+// where the previous frame saw it, and p_prev moved into the current camera against where the
+// current frame saw it, each as 2 pixel residuals (sigma = pixel_sigma) and a depth residual
+// (sigma = depth_noise_coeff * z^2). The observations are recovered from the points
+// themselves (x = X/Z, y = Y/Z, z = Z), so `focal_px` is all it needs of the camera.
+// With `dense`, its point-to-plane residuals (whitened by its own noise) are added, each with a
+// Huber cost truncated at inlier_sigmas.
+RefineResult RefineMotion(const RefineOptions& options, double focal_px,
+                          const std::vector<PointPair>& pairs, const std::vector<int>& indices,
+                          const Rigid3d& initial_prev_from_cur,
+                          const DepthPlaneTerm* dense = nullptr);
+
+// Whitened symmetric error of one pair under prev_from_cur (the larger of the two directions,
+// in sigmas): the inlier test that grows with depth.
+double WhitenedError(const RefineOptions& options, double focal_px, const PointPair& pair,
+                     const Rigid3d& prev_from_cur);
+
+// How much noisier the pairs named by `indices` are under prev_from_cur than the model says,
+// for the image and the depth part of the residual separately: the median whitened pixel error
+// over 1.177 (the median of a chi distribution with 2 degrees of freedom) and the median
+// absolute whitened depth error over 0.674 (the median of |N(0, 1)|), each at least 1. Motion
+// blur and the rolling shutter of a fast turn move keypoints by several pixels; depth taken up
+// to 20 ms before or after the colour image errs along the motion. A robust scale estimate (as
+// in M-estimation) lets the Huber threshold and the inlier test follow the frame's actual noise
+// instead of cutting the true matches away. {1, 1} when indices is empty.
+struct NoiseScale {
+  double pixel = 1, depth = 1;
+};
+NoiseScale EstimateNoiseScale(const RefineOptions& options, double focal_px,
+                              const std::vector<PointPair>& pairs, const std::vector<int>& indices,
+                              const Rigid3d& prev_from_cur);
+
+// The options with pixel_sigma and depth_noise_coeff multiplied by the scales.
+RefineOptions ScaleNoise(RefineOptions options, const NoiseScale& scale);
+
+}  // namespace rgbdvo

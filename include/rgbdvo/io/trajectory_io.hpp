@@ -1,0 +1,38 @@
+#pragma once
+// Reading trajectory files: the TUM format (`timestamp tx ty tz qx qy qz qw`, '#' comments) and
+// rgbdvo's own CSV (header `frame,timestamp,tx,ty,tz,qx,qy,qz,qw,...`), told apart by the CSV
+// header. Every pose in a file is camera-to-world (world_from_cam).
+
+#include <string>
+#include <vector>
+
+#include "rgbdvo/geometry/geometry.hpp"
+
+namespace rgbdvo {
+
+struct StampedPose {
+  double timestamp = 0;  // seconds
+  Rigid3d world_from_cam = Rigid3d::Identity();
+};
+
+enum class TrajectoryFormat { kTum, kCsv };
+
+struct Trajectory {
+  std::string path;
+  TrajectoryFormat format = TrajectoryFormat::kTum;
+  std::vector<StampedPose> poses;  // sorted by timestamp, timestamps unique
+  int repeated_timestamps = 0;     // rows dropped because a later row had the same timestamp
+};
+
+// Reads a TUM or rgbdvo CSV trajectory (a CSV is recognised by a first line that names the
+// columns and contains `timestamp`, `tx` and `qw`). Throws std::runtime_error naming
+// `path:line` for a bad row (too few fields, not a number, a zero quaternion), and naming the
+// file for a missing or empty file. Rows need not be sorted. Of rows with the same timestamp
+// the last one is kept, as in the TUM tools (rgbdvo stamps a pose with its depth image's time,
+// which two colour frames can share).
+Trajectory ReadTrajectory(const std::string& path);
+
+// Writes `timestamp tx ty tz qx qy qz qw` lines; throws naming the file.
+void WriteTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses);
+
+}  // namespace rgbdvo

@@ -1,0 +1,173 @@
+#pragma once
+// The visual odometry loop: features -> matches -> 3D pairs -> RANSAC -> verification -> pose.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rgbdvo/estimation/depth_alignment.hpp"
+#include "rgbdvo/estimation/motion_check.hpp"
+#include "rgbdvo/estimation/ransac.hpp"
+#include "rgbdvo/estimation/refine.hpp"
+#include "rgbdvo/features/features.hpp"
+#include "rgbdvo/features/guided_matching.hpp"
+#include "rgbdvo/features/matching.hpp"
+#include "rgbdvo/geometry/geometry.hpp"
+#include "rgbdvo/odometry/point_pairs.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/sources/frame.hpp"
+
+namespace rgbdvo {
+
+struct OdometryOptions {
+  FeatureOptions features;
+  MatchOptions matching;
+  // Guided matching (issue 7): a reference keypoint is compared only with the current keypoints
+  // within this radius of where the constant-velocity motion prior puts it (colour pixels; ratio
+  // and mutual check from `matching`); an estimate that fails verification is redone with
+  // brute-force matching. 0 = brute force only (the paper). See GuidedMatchOptions::radius_px.
+  double guided_radius_px = 30;
+  LiftOptions lifting;
+  RansacOptions ransac;
+  MotionCheckOptions verify;
+  // Refine the RANSAC motion on reprojection and depth residuals (false = the paper's SVD only).
+  bool refine_enabled = true;
+  RefineOptions refine;
+  // Keyframes: frames are matched against the keyframe, which is replaced by the current frame
+  // when its inliers fall below this fraction of those of the keyframe's first match (drift
+  // then grows per keyframe, not per frame). 0 = every accepted frame is the next reference,
+  // as in the paper.
+  double keyframe_inlier_ratio = 0.7;
+  // After this many rejected frames in a row the reference is given up: the current frame
+  // becomes the new reference at the last known pose (status "lost"), so a stuck reference
+  // cannot freeze the trajectory forever. 0 = never.
+  int max_rejected_run = 30;
+  // When the features give no verified motion, align the frame's depth image with the last
+  // estimated frame's (status "icp"; DepthAligner: ICP from several starts, accepted only when
+  // the majority of the overlapping depth agrees). On fr1/desk's fast turn at every 3rd frame it
+  // turns 6 predicted frames (up to 49 degrees off) into ICP estimates within 5.5 degrees (see
+  // docs/benchmarks.md). false = features only (the paper).
+  bool depth_fallback = true;
+  // A frame whose motion cannot be estimated is reported at the constant-velocity prediction
+  // (status "predicted"), so a failure run does not freeze the trajectory; false = at the last
+  // accepted pose (status "rejected", the paper).
+  bool predict_failed_frames = true;
+  // The depth image may be taken up to half a frame before or after the colour image (TUM fr1:
+  // +-15 ms); in a fast turn the scene moves by several pixels meanwhile. Lift each keypoint
+  // where its point lies in the depth image, moved by the predicted velocity over the time
+  // difference (LiftKeypointsAcrossTime); false = at the same pixel (the paper).
+  bool compensate_depth_delay = true;
+  // > 0: the final refinement also aligns the depth surfaces (DepthPlaneTerm): point-to-plane
+  // residuals of the current depth image's points on a grid of every n-th pixel against the
+  // reference's depth image. Off by default: at every 16th pixel it lowers ATE on fr1/xyz and
+  // fr3/teddy (full rate and thinned) by 10-25 %, but raises fr1/desk's fast turn's rotational
+  // RPE by a fifth, past the dense peers (docs/benchmarks.md). 0 = feature residuals only.
+  int depth_term_step = 0;
+  // Use the calibration's lens distortion (dist_ir) when lifting pixels (the paper: no).
+  bool undistort = true;
+  uint32_t seed = 42;  // RANSAC random generator seed (fixed: runs are reproducible)
+  void Check() const;
+  std::string ToString() const;  // the effective configuration, one "key = value" per line
+};
+
+// Named configurations: "default" (rgbdvo's most accurate) and "paper" (exactly Fiala & Ufkes
+// 2011: ratio-test matching between successive frames, 4-point RANSAC at 1.5 cm, SVD refinement,
+// pinhole model). Throws std::invalid_argument for another name.
+OdometryOptions PresetOptions(const std::string& name);
+
+// kAccepted: estimated against the keyframe. kRecovered: the keyframe failed, estimated against
+// the last accepted frame. kDepth: the features failed, the depth images aligned by ICP.
+// kPredicted / kRejected: no estimate, reported at the prediction / at the last accepted pose
+// (predict_failed_frames). kLost: the references were given up here.
+enum class FrameStatus { kFirst, kAccepted, kRecovered, kDepth, kPredicted, kRejected, kLost };
+
+// True for the statuses whose pose comes from matched features (or the first frame).
+bool HasFeatureEstimate(FrameStatus status);
+// True for those and kDepth: the pose was measured, not predicted or held.
+bool HasEstimate(FrameStatus status);
+
+// Seconds spent per stage for one frame (for bench/speed).
+struct StageTimes {
+  double features = 0, matching = 0, lifting = 0, ransac = 0;
+};
+
+struct FrameResult {
+  int frame = 0;
+  double timestamp = 0;  // seconds: the colour image's time (Frame::color_timestamp)
+  Rigid3d world_from_cam = Rigid3d::Identity();
+  int features = 0;
+  int matches = 0;
+  int pairs = 0;  // matches with depth at both ends
+  int inliers = 0;
+  // Estimates redone with brute-force matching because the guided one failed verification.
+  int fallbacks = 0;
+  // For each final inlier: the distance from where the motion prior predicted its reference
+  // keypoint to the current keypoint it was matched with, colour pixels.
+  std::vector<float> prediction_error_px;
+  FrameStatus status = FrameStatus::kFirst;
+  std::string reason;  // why the features failed (icp, predicted, rejected, lost), "" otherwise
+  StageTimes times;
+  // "first", "accepted", "recovered", "icp:<reason>", "predicted:<reason>", "rejected:<reason>"
+  // or "lost:<reason>" (no commas); <reason> says why the features failed.
+  std::string StatusString() const;
+};
+
+// Tracking policy. Each frame is matched against the keyframe (guided by the prediction, then
+// by brute force), then against the last accepted frame. When neither passes verification the
+// depth images are aligned (depth_fallback); when that fails too the frame is reported at the
+// constant-velocity prediction (or held, see predict_failed_frames) and the next frame is matched
+// against the same references, never against the failed one, so the motion across the failure is
+// still measured, not lost.
+class Odometry {
+ public:
+  Odometry(const OdometryOptions& options, const Calibration& calib);
+  // Extracts features from frame.bgr, then as below.
+  FrameResult Process(const Frame& frame);
+  // With features already extracted from frame.bgr (e.g. on another thread).
+  FrameResult Process(const Frame& frame, Features features);
+  const SiftExtractor& extractor() const { return extractor_; }
+  const OdometryOptions& options() const { return options_; }
+  const Calibration& calibration() const { return calib_; }
+
+ private:
+  struct Reference {
+    Features features;
+    KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once
+    cv::Mat depth_m;        // the depth image, for the depth fallback and term (else empty)
+    Rigid3d depth_from_cam = Rigid3d::Identity();  // the depth camera at the depth image's time
+    std::vector<Eigen::Vector3d> depth_points;     // SampleDepthPoints, in this camera
+    Rigid3d world_from_cam = Rigid3d::Identity();
+    int frame = -1;
+    double color_timestamp = 0;  // seconds (Frame::color_timestamp)
+    int first_inliers = -1;      // inliers of the first frame matched against it
+  };
+  // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided
+  // by world_from_cur_pred, with a brute-force retry if that fails verification.
+  RansacResult Estimate(const Reference& ref, const Reference& cur,
+                        const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
+  // RANSAC and refinement on the 3D pairs of `matches`; match_of_pair as in PairMatches.
+  RansacResult EstimateFromMatches(const Reference& ref, const Reference& cur,
+                                   const std::vector<cv::DMatch>& matches, FrameResult* r,
+                                   std::vector<int>* match_of_pair);
+
+  // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy.
+  void Advance(Reference cur, bool new_keyframe);
+
+  OdometryOptions options_;
+  Calibration calib_;
+  SiftExtractor extractor_;
+  Rng rng_;
+  std::unique_ptr<DepthAligner> depth_aligner_;  // with depth_fallback
+  cv::Mat depth_rays_;                           // DepthRays, with depth_term_step
+  bool started_ = false;
+  Reference key_;   // what frames are matched against
+  Reference last_;  // the last accepted frame (fallback when the keyframe fails)
+  // The accepted frame before last_ (pose and colour time) for the constant-velocity prior.
+  bool has_before_ = false;
+  Rigid3d world_from_before_ = Rigid3d::Identity();
+  double before_color_time_ = 0;
+  int rejected_run_ = 0;
+};
+
+}  // namespace rgbdvo

@@ -1,0 +1,35 @@
+#pragma once
+// Runs of frames without a feature estimate (icp, predicted, rejected, lost): when they start
+// and end, and the longest, so that no failure goes unreported.
+
+#include <optional>
+#include <string>
+
+#include "rgbdvo/odometry/odometry.hpp"
+
+namespace rgbdvo {
+
+class TrackingGaps {
+ public:
+  // Feeds the next frame's result (in frame order). Returns a one-line warning when a gap starts
+  // ("tracking failed at t=... (frame N): reason; reporting predicted poses", or what else
+  // carries the pose) or ends ("tracking resumed at t=... (frame N) after K frames (S s)
+  // without a feature estimate").
+  std::optional<std::string> Add(const FrameResult& result);
+  // A warning for a gap still open at the end of the sequence, if any.
+  std::optional<std::string> Finish() const;
+
+  int longest_frames() const { return longest_frames_; }
+  double longest_seconds() const { return longest_seconds_; }  // first to last frame of the gap
+  int gaps() const { return gaps_; }
+
+ private:
+  bool open_ = false;
+  int run_frames_ = 0;
+  double run_start_time_ = 0, last_time_ = 0;
+  int longest_frames_ = 0;
+  double longest_seconds_ = 0;
+  int gaps_ = 0;
+};
+
+}  // namespace rgbdvo

@@ -1,0 +1,54 @@
+#pragma once
+// TUM RGB-D folders: rgb.txt, depth.txt, rgb/*.png, depth/*.png (Sturm et al. 2012).
+
+#include <string>
+#include <vector>
+
+#include "rgbdvo/sources/frame_source.hpp"
+
+namespace rgbdvo {
+
+struct TumSourceOptions {
+  double max_time_diff_s = 0.02;     // rgb/depth association window (TUM tools: 0.02 s)
+  double depth_units_per_m = 5000.;  // 16-bit depth scale (TUM: 5000 per metre)
+  void Check() const;
+};
+
+// One `timestamp path` line of a TUM list file.
+struct TumListEntry {
+  double timestamp = 0;
+  std::string path;  // relative to the folder
+};
+
+// Reads rgb.txt / depth.txt style lists: '#' comments and blank lines skipped, CRLF tolerated.
+// Throws std::runtime_error naming the file and line for unreadable files or malformed lines.
+std::vector<TumListEntry> ReadTumList(const std::string& path);
+
+// True when `folder` has the TUM layout (rgb.txt and depth.txt).
+bool IsTumFolder(const std::string& folder);
+
+class TumSource : public FrameSource {
+ public:
+  // Throws std::runtime_error naming the missing folder or list file, or an empty sequence.
+  TumSource(const std::string& folder, const TumSourceOptions& options);
+  std::optional<Frame> Next() override;
+  std::string Describe() const override;
+  bool Skip() override;
+  std::optional<size_t> Size() const override { return pairs_.size(); }
+
+  size_t size() const { return pairs_.size(); }
+  // Colour frames with no depth frame within the window (reported, then skipped).
+  const std::vector<TumListEntry>& unpaired() const { return unpaired_; }
+
+ private:
+  struct Pair {
+    TumListEntry rgb, depth;
+  };
+  std::string folder_;
+  TumSourceOptions options_;
+  std::vector<Pair> pairs_;
+  std::vector<TumListEntry> unpaired_;
+  size_t next_ = 0;
+};
+
+}  // namespace rgbdvo

@@ -1,0 +1,57 @@
+#pragma once
+// Synthetic Kinect v1 recordings in the fakenect layout, for tests and demos without a device.
+// The colour camera renders the synthetic scene (synthetic.hpp); the IR camera, offset from it
+// and with its own intrinsics, renders Z-depth, which is encoded as raw 11-bit disparity
+// (kinect_depth.hpp), exactly what a Kinect v1 sends through libfreenect.
+//
+// The paper's linear colour->IR mapping (eq. 1) cannot be exact for an offset camera: with the
+// IR camera at o = (ox, oy, 0) in the colour frame,
+//   u_ir = A u + B - fx_ir ox (1/Z - 1/Z_ref),   A = fx_ir / fx_rgb,
+//   B = cx_ir - A cx_rgb - fx_ir ox / Z_ref         (and likewise v, C, D with oy),
+// so the mapping is exact at the reference depth Z_ref and off by fx_ir |o| |1/Z - 1/Z_ref|
+// pixels elsewhere (3.9 px at 1.5 m and 2.9 px at 5 m for fx_ir = 580, |o| = 2.5 cm,
+// Z_ref = 2.5 m). In 3D this shifts a point by |o| |1 - Z/Z_ref| sideways: a fixed 1 % shear
+// of the scene per metre of depth, which the rigid motion estimate absorbs almost entirely.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rgbdvo/geometry/geometry.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/synthetic/synthetic.hpp"
+
+namespace rgbdvo {
+
+struct SyntheticKinectOptions {
+  PinholeCamera color{525.0, 525.0, 319.5, 239.5, 640, 480};  // colour camera
+  PinholeCamera ir{580.0, 580.0, 320.0, 240.0, 640, 480};     // IR (depth) camera
+  Eigen::Vector3d ir_in_color{0.025, 0.0, 0.0};  // IR camera centre in the colour frame, m
+  double reference_depth_m = 2.5;                // where eq. 1 is exact, m
+  int64_t start_us = 1700000000000000;           // wall clock of the first frame, us
+  int64_t period_us = 33333;                     // frame period (30 Hz), us
+  bool accelerometer = true;                     // write an a- entry per frame
+  void Check() const;
+};
+
+// The calibration matching the simulation: A..D as above, K_ir = the IR intrinsics.
+Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& options);
+
+// MakeSmoothPath moved 2 m into the room, so the scene lies about 0.4-2.5 m away, the Kinect's
+// working range, where one raw depth step is under 2 cm. (From the default start the far wall
+// is 4 m away; there a step is 5 cm, which hides the depth change of the small rotations.)
+std::vector<Rigid3d> MakeKinectRangePath(int n);
+
+// Writes, into the new folder (refused if not empty, like every recording), one r-, a- and
+// d- entry per pose of `world_from_color` (colour at t_k, accelerometer at t_k + 0.3 ms, depth
+// at t_k + 1 ms, t_k = start + k * period), plus calib.yaml (the calibration above) and
+// groundtruth.txt (TUM format: depth timestamp and the IR camera's pose relative to its first
+// pose; the odometry measures the IR camera, whose frame its 3D points are in). Returns those
+// IR poses (ir0_from_irk).
+std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
+                                                   const SyntheticScene& scene,
+                                                   const SyntheticKinectOptions& options,
+                                                   const std::vector<Rigid3d>& world_from_color);
+
+}  // namespace rgbdvo

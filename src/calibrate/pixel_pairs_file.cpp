@@ -1,0 +1,87 @@
+#include "rgbdvo/calibrate/pixel_pairs_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace rgbdvo {
+namespace {
+
+constexpr const char* kHeader = "u_vis,v_vis,u_ir,v_ir";
+
+std::string Trim(const std::string& s) {
+  const size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+double ParseNumber(const std::string& field, const std::string& where) {
+  const std::string t = Trim(field);
+  size_t used = 0;
+  double x = 0;
+  try {
+    x = std::stod(t, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (t.empty() || used != t.size())
+    throw std::runtime_error(where + ": '" + t + "' is not a number");
+  if (!std::isfinite(x)) throw std::runtime_error(where + ": '" + t + "' is not finite");
+  return x;
+}
+
+}  // namespace
+
+std::vector<PixelPair> LoadPixelPairs(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open pairs file");
+  std::vector<PixelPair> pairs;
+  bool header_seen = false;
+  int line_no = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    const std::string where = path + ":" + std::to_string(line_no);
+    line = Trim(line);
+    if (line.empty() || line[0] == '#') continue;
+    if (!header_seen) {
+      std::string compact;
+      for (char c : line)
+        if (c != ' ' && c != '\t') compact += c;
+      if (compact != kHeader)
+        throw std::runtime_error(where + ": expected the header '" + kHeader + "', got '" + line +
+                                 "'");
+      header_seen = true;
+      continue;
+    }
+    std::vector<std::string> fields;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
+    if (line.back() == ',') fields.push_back("");
+    if (fields.size() != 4)
+      throw std::runtime_error(where + ": expected 4 comma-separated numbers (" + kHeader +
+                               "), got " + std::to_string(fields.size()) + " fields");
+    PixelPair p;
+    p.u_vis = ParseNumber(fields[0], where);
+    p.v_vis = ParseNumber(fields[1], where);
+    p.u_ir = ParseNumber(fields[2], where);
+    p.v_ir = ParseNumber(fields[3], where);
+    pairs.push_back(p);
+  }
+  if (!header_seen)
+    throw std::runtime_error(path + ": empty pairs file (no '" + kHeader + "' header)");
+  return pairs;
+}
+
+void SavePixelPairs(const std::vector<PixelPair>& pairs, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot write pairs file");
+  out.precision(10);
+  out << kHeader << "\n";
+  for (const PixelPair& p : pairs)
+    out << p.u_vis << "," << p.v_vis << "," << p.u_ir << "," << p.v_ir << "\n";
+  out.flush();
+  if (!out) throw std::runtime_error(path + ": error while writing pairs file");
+}
+
+}  // namespace rgbdvo

@@ -1,0 +1,214 @@
+#include "rgbdvo/estimation/refine.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace rgbdvo {
+namespace {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Mat36 = Eigen::Matrix<double, 3, 6>;
+
+Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return m;
+}
+
+// Whitened residual of point q (in the observing camera) against observation obs (a point
+// whose X/Z, Y/Z, Z are what that camera measured), and d(residual)/d(q).
+Eigen::Vector3d Residual(const RefineOptions& o, double f, const Eigen::Vector3d& q,
+                         const Eigen::Vector3d& obs, Eigen::Matrix3d* J) {
+  const double su = o.pixel_sigma / f;  // pixel noise in normalised coordinates
+  const double sz = o.depth_noise_coeff * obs.z() * obs.z();
+  const double iz = 1.0 / q.z();
+  const Eigen::Vector3d r((q.x() * iz - obs.x() / obs.z()) / su,
+                          (q.y() * iz - obs.y() / obs.z()) / su, (q.z() - obs.z()) / sz);
+  if (J) {
+    *J << iz / su, 0, -q.x() * iz * iz / su, 0, iz / su, -q.y() * iz * iz / su, 0, 0, 1 / sz;
+  }
+  return r;
+}
+
+double Huber(double e, double k) { return e <= k ? 0.5 * e * e : k * (e - 0.5 * k); }
+
+// Robust cost and, if H/g are given, the Gauss-Newton system for a left perturbation
+// prev_from_cur <- Exp(delta) * prev_from_cur, delta = (omega, v).
+double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
+                const std::vector<int>& idx, const DepthPlaneTerm* dense, const Rigid3d& T, Mat6* H,
+                Vec6* g) {
+  double cost = 0;
+  if (H) H->setZero(), g->setZero();
+  if (dense) {
+    // Truncated Huber: a point beyond inlier_sigmas (an occlusion, a moved object) or on no
+    // reading costs as much as one at the cut and pulls nothing.
+    const double k = o.huber_sigmas, cut = o.inlier_sigmas, cut_cost = Huber(cut, k);
+    Eigen::Matrix<double, 1, 6> J;
+    for (size_t i = 0; i < dense->size(); ++i) {
+      double r;
+      if (!dense->Residual(i, T, &r, H ? &J : nullptr) || std::abs(r) > cut) {
+        cost += cut_cost;
+        continue;
+      }
+      const double e = std::abs(r);
+      cost += Huber(e, k);
+      if (!H) continue;
+      const double w = e <= k ? 1.0 : k / e;
+      *H += w * J.transpose() * J;
+      *g += w * J.transpose() * r;
+    }
+  }
+  const Eigen::Matrix3d Rt = T.linear().transpose();
+  for (int k : idx) {
+    const PointPair& p = pairs[k];
+    const Eigen::Vector3d q = T * p.p_cur;                        // cur point in prev
+    const Eigen::Vector3d s = Rt * (p.p_prev - T.translation());  // prev point in cur
+    if (q.z() <= 1e-6 || s.z() <= 1e-6) continue;
+    Eigen::Matrix3d Jq, Js;
+    const Eigen::Vector3d rq = Residual(o, f, q, p.p_prev, H ? &Jq : nullptr);
+    const Eigen::Vector3d rs = Residual(o, f, s, p.p_cur, H ? &Js : nullptr);
+    for (int side = 0; side < 2; ++side) {
+      const Eigen::Vector3d& r = side == 0 ? rq : rs;
+      const double e = r.norm();
+      cost += Huber(e, o.huber_sigmas);
+      if (!H) continue;
+      const double w = e <= o.huber_sigmas ? 1.0 : o.huber_sigmas / e;  // IRLS weight
+      Mat36 dpoint;                                                     // d(point)/d(delta)
+      if (side == 0) {
+        dpoint << -Hat(q), Eigen::Matrix3d::Identity();  // Exp(d) q ~ q + w x q + v
+      } else {
+        dpoint << Rt * Hat(p.p_prev), -Rt;  // T^-1 Exp(-d) p ~ s + R^T(p x w - v)
+      }
+      const Mat36 J = (side == 0 ? Jq : Js) * dpoint;
+      *H += w * J.transpose() * J;
+      *g += w * J.transpose() * r;
+    }
+  }
+  const size_t n = idx.size() + (dense ? dense->size() : 0);
+  return n == 0 ? 0 : cost / static_cast<double>(n);
+}
+
+Rigid3d Apply(const Vec6& d, const Rigid3d& T) {
+  Rigid3d E = Rigid3d::Identity();
+  const double angle = d.head<3>().norm();
+  if (angle > 0) E.linear() = Eigen::AngleAxisd(angle, d.head<3>() / angle).toRotationMatrix();
+  E.translation() = d.tail<3>();
+  Rigid3d out = E * T;
+  out.linear() = NearestRotation(out.linear());
+  return out;
+}
+
+}  // namespace
+
+void RefineOptions::Check() const {
+  if (!(pixel_sigma > 0)) throw std::invalid_argument("refine pixel_sigma must be > 0");
+  if (!(depth_noise_coeff > 0)) throw std::invalid_argument("refine depth_noise_coeff must be > 0");
+  if (!(huber_sigmas > 0)) throw std::invalid_argument("refine huber_sigmas must be > 0");
+  if (!(inlier_sigmas > 0)) throw std::invalid_argument("refine inlier_sigmas must be > 0");
+  if (max_iterations < 1) throw std::invalid_argument("refine max_iterations must be >= 1");
+}
+
+std::string RefineResult::Brief() const {
+  std::ostringstream s;
+  s << (success ? "refined" : "refinement failed") << " in " << iterations << " iterations, cost "
+    << initial_cost << " -> " << final_cost;
+  return s.str();
+}
+
+namespace {
+
+// The whitened residuals of a pair in both directions (cur point seen from prev, prev point seen
+// from cur); false when either point falls behind the other camera.
+bool SymmetricResiduals(const RefineOptions& o, double f, const PointPair& p, const Rigid3d& T,
+                        Eigen::Vector3d* in_prev, Eigen::Vector3d* in_cur) {
+  const Eigen::Vector3d q = T * p.p_cur;
+  const Eigen::Vector3d s = T.linear().transpose() * (p.p_prev - T.translation());
+  if (q.z() <= 1e-6 || s.z() <= 1e-6) return false;
+  *in_prev = Residual(o, f, q, p.p_prev, nullptr);
+  *in_cur = Residual(o, f, s, p.p_cur, nullptr);
+  return true;
+}
+
+}  // namespace
+
+double WhitenedError(const RefineOptions& o, double f, const PointPair& p, const Rigid3d& T) {
+  Eigen::Vector3d a, b;
+  if (!SymmetricResiduals(o, f, p, T, &a, &b)) return std::numeric_limits<double>::infinity();
+  return std::max(a.norm(), b.norm());
+}
+
+NoiseScale EstimateNoiseScale(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
+                              const std::vector<int>& idx, const Rigid3d& T) {
+  std::vector<double> pixel, depth;
+  for (int k : idx) {
+    Eigen::Vector3d a, b;
+    if (!SymmetricResiduals(o, f, pairs[k], T, &a, &b)) continue;
+    for (const Eigen::Vector3d* r : {&a, &b}) {
+      pixel.push_back(r->head<2>().norm());
+      depth.push_back(std::abs(r->z()));
+    }
+  }
+  NoiseScale scale;
+  if (pixel.empty()) return scale;
+  const auto median = [](std::vector<double>& v) {
+    auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+  };
+  constexpr double kMedianChi2 = 1.177;  // sqrt of chi-squared(2)'s median 1.386
+  constexpr double kMedianAbsNormal = 0.674;
+  scale.pixel = std::max(1.0, median(pixel) / kMedianChi2);
+  scale.depth = std::max(1.0, median(depth) / kMedianAbsNormal);
+  return scale;
+}
+
+RefineOptions ScaleNoise(RefineOptions o, const NoiseScale& scale) {
+  o.pixel_sigma *= scale.pixel;
+  o.depth_noise_coeff *= scale.depth;
+  return o;
+}
+
+RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
+                          const std::vector<int>& idx, const Rigid3d& initial,
+                          const DepthPlaneTerm* dense) {
+  RefineResult result;
+  result.prev_from_cur = initial;
+  if (idx.size() < 3) return result;
+  Mat6 H;
+  Vec6 g;
+  double cost = Evaluate(o, f, pairs, idx, dense, initial, &H, &g);
+  result.initial_cost = cost;
+  double lambda = 1e-4;
+  for (int it = 0; it < o.max_iterations; ++it) {
+    result.iterations = it + 1;
+    Mat6 A = H;
+    A.diagonal() *= 1 + lambda;
+    const Vec6 delta = -A.ldlt().solve(g);
+    if (!delta.allFinite()) break;
+    const Rigid3d candidate = Apply(delta, result.prev_from_cur);
+    Mat6 H2;
+    Vec6 g2;
+    const double new_cost = Evaluate(o, f, pairs, idx, dense, candidate, &H2, &g2);
+    if (new_cost < cost) {
+      const bool converged = cost - new_cost < 1e-9 * cost || delta.norm() < 1e-10;
+      result.prev_from_cur = candidate;
+      cost = new_cost;
+      H = H2;
+      g = g2;
+      lambda = std::max(lambda / 10, 1e-9);
+      if (converged) break;
+    } else {
+      lambda *= 10;
+      if (lambda > 1e6) break;
+    }
+  }
+  result.final_cost = cost;
+  result.success = true;
+  return result;
+}
+
+}  // namespace rgbdvo

@@ -1,0 +1,126 @@
+#include "rgbdvo/features/guided_matching.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/core/hal/hal.hpp>
+#include <stdexcept>
+
+namespace rgbdvo {
+
+void GuidedMatchOptions::Check() const {
+  if (!(radius_px > 0)) throw std::invalid_argument("guided radius_px must be > 0");
+  if (!(ratio > 0 && ratio <= 1)) throw std::invalid_argument("guided ratio must be in (0, 1]");
+}
+
+namespace {
+
+// The current keypoints bucketed in square cells (counting sort, one array per frame): the
+// keypoints of cell c are index[start[c] .. start[c+1]), in ascending order.
+struct Grid {
+  float x0 = 0, y0 = 0, cell = 1;
+  int nx = 0, ny = 0;
+  std::vector<int> start, index;
+
+  Grid(const std::vector<cv::KeyPoint>& kps, float cell_px) : cell(cell_px) {
+    float x1 = 0, y1 = 0;
+    x0 = y0 = std::numeric_limits<float>::max();
+    x1 = y1 = std::numeric_limits<float>::lowest();
+    for (const cv::KeyPoint& k : kps) {
+      x0 = std::min(x0, k.pt.x), y0 = std::min(y0, k.pt.y);
+      x1 = std::max(x1, k.pt.x), y1 = std::max(y1, k.pt.y);
+    }
+    nx = static_cast<int>((x1 - x0) / cell) + 1;
+    ny = static_cast<int>((y1 - y0) / cell) + 1;
+    start.assign(static_cast<size_t>(nx) * ny + 1, 0);
+    std::vector<int> cell_of(kps.size());
+    for (size_t j = 0; j < kps.size(); ++j) {
+      cell_of[j] = Cell(kps[j].pt.x, kps[j].pt.y);
+      ++start[cell_of[j] + 1];
+    }
+    for (size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    index.resize(kps.size());
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (size_t j = 0; j < kps.size(); ++j) index[fill[cell_of[j]]++] = static_cast<int>(j);
+  }
+  int Cell(float x, float y) const {
+    return static_cast<int>((y - y0) / cell) * nx + static_cast<int>((x - x0) / cell);
+  }
+  // Cell range [lo, hi] along one axis covering [v - r, v + r]; empty (lo > hi) if outside.
+  static void Range(double v, double r, float v0, float cell, int n, int* lo, int* hi) {
+    const double a = std::floor((v - r - v0) / cell), b = std::floor((v + r - v0) / cell);
+    *lo = static_cast<int>(std::clamp(a, 0.0, static_cast<double>(n)));
+    *hi = static_cast<int>(std::clamp(b, -1.0, n - 1.0));
+  }
+};
+
+}  // namespace
+
+std::vector<cv::DMatch> MatchGuided(const GuidedMatchOptions& o, const Features& ref,
+                                    const std::vector<std::optional<Eigen::Vector2d>>& predicted,
+                                    const Features& cur) {
+  if (predicted.size() != ref.size())
+    throw std::invalid_argument("MatchGuided: one prediction per reference keypoint expected");
+  std::vector<cv::DMatch> out;
+  if (ref.size() == 0 || cur.size() == 0) return out;
+  if (ref.descriptors.type() != CV_32F || cur.descriptors.type() != CV_32F ||
+      ref.descriptors.cols != cur.descriptors.cols)
+    throw std::invalid_argument("MatchGuided: CV_32F descriptors of the same length expected");
+  const int dims = cur.descriptors.cols;
+  const double r = o.radius_px, r2 = r * r;
+  const Grid grid(cur.keypoints, static_cast<float>(std::clamp(r, 4.0, 1e4)));
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+
+  // One pass over the candidate pairs (the relation is symmetric): squared distances to the
+  // nearest and second nearest candidate of each reference keypoint, and the nearest reference
+  // keypoint of each current keypoint. Ties go to the lower index, as in cv::BFMatcher.
+  std::vector<float> cur_best(cur.size(), kInf);
+  std::vector<int> cur_best_ref(cur.size(), -1);
+  struct Best {
+    float d1, d2;
+    int j;
+  };
+  std::vector<Best> ref_best(ref.size(), Best{kInf, kInf, -1});
+  for (size_t i = 0; i < ref.size(); ++i) {
+    if (!predicted[i]) continue;
+    const double px = predicted[i]->x(), py = predicted[i]->y();
+    int cx0, cx1, cy0, cy1;
+    Grid::Range(px, r, grid.x0, grid.cell, grid.nx, &cx0, &cx1);
+    Grid::Range(py, r, grid.y0, grid.cell, grid.ny, &cy0, &cy1);
+    const float* a = ref.descriptors.ptr<float>(static_cast<int>(i));
+    Best& b = ref_best[i];
+    for (int cy = cy0; cy <= cy1; ++cy)
+      for (int cx = cx0; cx <= cx1; ++cx) {
+        const int c = cy * grid.nx + cx;
+        for (int k = grid.start[c]; k < grid.start[c + 1]; ++k) {
+          const int j = grid.index[k];
+          const double dx = cur.keypoints[j].pt.x - px, dy = cur.keypoints[j].pt.y - py;
+          if (dx * dx + dy * dy > r2) continue;
+          const float d = cv::hal::normL2Sqr_(a, cur.descriptors.ptr<float>(j), dims);
+          if (d < b.d1 || (d == b.d1 && j < b.j)) {
+            b.d2 = b.d1;
+            b.d1 = d;
+            b.j = j;
+          } else if (d < b.d2) {
+            b.d2 = d;
+          }
+          if (d < cur_best[j] || (d == cur_best[j] && static_cast<int>(i) < cur_best_ref[j])) {
+            cur_best[j] = d;
+            cur_best_ref[j] = static_cast<int>(i);
+          }
+        }
+      }
+  }
+  for (size_t i = 0; i < ref.size(); ++i) {
+    const Best& b = ref_best[i];
+    if (b.j < 0) continue;
+    // The ratio test on L2 distances exactly as MatchFeatures does it on cv::DMatch::distance.
+    const float d1 = std::sqrt(b.d1), d2 = std::sqrt(b.d2);
+    if (!(d1 < o.ratio * d2)) continue;
+    if (o.mutual && cur_best_ref[b.j] != static_cast<int>(i)) continue;
+    out.emplace_back(static_cast<int>(i), b.j, d1);
+  }
+  return out;
+}
+
+}  // namespace rgbdvo

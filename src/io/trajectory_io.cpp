@@ -1,0 +1,122 @@
+#include "rgbdvo/io/trajectory_io.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace rgbdvo {
+namespace {
+
+std::string Trim(const std::string& s) {
+  const size_t b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const size_t e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> Split(const std::string& line, bool csv) {
+  std::vector<std::string> fields;
+  if (csv) {
+    std::stringstream s(line);
+    for (std::string f; std::getline(s, f, ',');) fields.push_back(Trim(f));
+  } else {
+    std::istringstream s(line);
+    for (std::string f; s >> f;) fields.push_back(f);
+  }
+  return fields;
+}
+
+double ParseNumber(const std::string& field, const std::string& where, const std::string& name) {
+  const char* begin = field.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if (field.empty() || end != begin + field.size() || errno == ERANGE || !std::isfinite(v))
+    throw std::runtime_error(where + ": " + name + " '" + field + "' is not a finite number");
+  return v;
+}
+
+}  // namespace
+
+Trajectory ReadTrajectory(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open trajectory file");
+  Trajectory traj;
+  traj.path = path;
+  static const char* kNames[] = {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
+  std::map<std::string, int> column;  // CSV: column of each field
+  bool first = true;
+  int line_no = 0;
+  for (std::string raw; std::getline(in, raw);) {
+    ++line_no;
+    const std::string line = Trim(raw);
+    if (line.empty() || line[0] == '#') continue;
+    const std::string where = path + ":" + std::to_string(line_no);
+    if (first) {
+      first = false;
+      const std::vector<std::string> header = Split(line, true);
+      if (std::find(header.begin(), header.end(), "timestamp") != header.end()) {
+        traj.format = TrajectoryFormat::kCsv;
+        for (size_t i = 0; i < header.size(); ++i) column[header[i]] = static_cast<int>(i);
+        for (const char* name : kNames)
+          if (!column.count(name))
+            throw std::runtime_error(where + ": CSV header lacks column '" + name + "'");
+        continue;
+      }
+    }
+    const bool csv = traj.format == TrajectoryFormat::kCsv;
+    const std::vector<std::string> f = Split(line, csv);
+    double v[8];
+    for (int k = 0; k < 8; ++k) {
+      const size_t col = csv ? static_cast<size_t>(column[kNames[k]]) : static_cast<size_t>(k);
+      if (col >= f.size())
+        throw std::runtime_error(where + ": expected " +
+                                 (csv ? std::to_string(column.size()) + " comma-separated" : "8") +
+                                 " fields (timestamp tx ty tz qx qy qz qw), found " +
+                                 std::to_string(f.size()));
+      v[k] = ParseNumber(f[col], where, kNames[k]);
+    }
+    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+    if (q.norm() < 1e-6) throw std::runtime_error(where + ": quaternion has zero norm");
+    traj.poses.push_back({v[0], MakeRigid(q, {v[1], v[2], v[3]})});
+  }
+  if (traj.poses.empty())
+    throw std::runtime_error(path + ": no poses (empty file or only comments/header)");
+  // Sort by time keeping file order among equal times, then keep the last of each time.
+  std::stable_sort(
+      traj.poses.begin(), traj.poses.end(),
+      [](const StampedPose& a, const StampedPose& b) { return a.timestamp < b.timestamp; });
+  std::vector<StampedPose> unique;
+  for (size_t k = 0; k < traj.poses.size(); ++k) {
+    if (k + 1 < traj.poses.size() && traj.poses[k + 1].timestamp == traj.poses[k].timestamp) {
+      ++traj.repeated_timestamps;
+      continue;
+    }
+    unique.push_back(traj.poses[k]);
+  }
+  traj.poses = std::move(unique);
+  return traj;
+}
+
+void WriteTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n" << std::fixed;
+  for (const StampedPose& p : poses) {
+    const Eigen::Quaterniond q(p.world_from_cam.linear());
+    const Eigen::Vector3d& t = p.world_from_cam.translation();
+    out << std::setprecision(6) << p.timestamp << ' ' << t.x() << ' ' << t.y() << ' ' << t.z()
+        << ' ' << std::setprecision(7) << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w()
+        << '\n';
+  }
+  out.flush();
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace rgbdvo

@@ -1,0 +1,92 @@
+#include "rgbdvo/sensor/camera.hpp"
+
+#include <cmath>
+
+namespace rgbdvo {
+
+Eigen::Vector2d ColorToIr(const Calibration& c, const Eigen::Vector2d& uv) {
+  return {c.A * uv.x() + c.B, c.C * uv.y() + c.D};
+}
+
+Eigen::Vector2d IrToColor(const Calibration& c, const Eigen::Vector2d& uv_ir) {
+  return {(uv_ir.x() - c.B) / c.A, (uv_ir.y() - c.D) / c.C};
+}
+
+namespace {
+
+bool HasDistortion(const Calibration& c) {
+  for (double k : c.dist_ir)
+    if (k != 0) return true;
+  return false;
+}
+
+// OpenCV's (Brown-Conrady) model on normalised coordinates.
+Eigen::Vector2d Distort(const Calibration& c, const Eigen::Vector2d& x) {
+  const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
+  const double r2 = x.squaredNorm(), radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+  return {x.x() * radial + 2 * p1 * x.x() * x.y() + p2 * (r2 + 2 * x.x() * x.x()),
+          x.y() * radial + p1 * (r2 + 2 * x.y() * x.y()) + 2 * p2 * x.x() * x.y()};
+}
+
+}  // namespace
+
+Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
+  const Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  if (!HasDistortion(c)) return distorted;
+  Eigen::Vector2d x = distorted;
+  for (int i = 0; i < 20; ++i) x += distorted - Distort(c, x);
+  return x;
+}
+
+Eigen::Vector3d BackProject(const Calibration& c, const Eigen::Vector2d& uv_ir, double depth_m) {
+  const Eigen::Vector2d x = NormalizeIr(c, uv_ir);
+  return {x.x() * depth_m, x.y() * depth_m, depth_m};
+}
+
+Eigen::Vector2d ProjectIr(const Calibration& c, const Eigen::Vector3d& p) {
+  Eigen::Vector2d x(p.x() / p.z(), p.y() / p.z());
+  if (HasDistortion(c)) x = Distort(c, x);
+  return {c.fx * x.x() + c.cx, c.fy * x.y() + c.cy};
+}
+
+std::optional<double> SampleDepth(const Calibration& c, const cv::Mat& depth_m,
+                                  const Eigen::Vector2d& uv_ir) {
+  const double u = std::round(uv_ir.x()), v = std::round(uv_ir.y());
+  if (!(u >= 0 && v >= 0 && u < depth_m.cols && v < depth_m.rows)) return std::nullopt;
+  const double d = depth_m.at<float>(static_cast<int>(v), static_cast<int>(u));
+  if (!(d > 0) || d < c.min_depth_m || d > c.max_depth_m) return std::nullopt;
+  return d;
+}
+
+std::optional<double> SampleDepthBilinear(const Calibration& c, const cv::Mat& depth_m,
+                                          const Eigen::Vector2d& uv_ir, double max_jump_ratio) {
+  const double u = uv_ir.x(), v = uv_ir.y();
+  if (!(u >= 0 && v >= 0 && u <= depth_m.cols - 1 && v <= depth_m.rows - 1)) return std::nullopt;
+  const int u0 = std::min(static_cast<int>(u), depth_m.cols - 2);
+  const int v0 = std::min(static_cast<int>(v), depth_m.rows - 2);
+  const double au = u - u0, av = v - v0;
+  const float* row0 = depth_m.ptr<float>(v0);
+  const float* row1 = depth_m.ptr<float>(v0 + 1);
+  const double d[4] = {row0[u0], row0[u0 + 1], row1[u0], row1[u0 + 1]};
+  double lo = d[0], hi = d[0];
+  for (double x : d) {
+    if (!(x > 0) || x < c.min_depth_m || x > c.max_depth_m) return std::nullopt;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  if (hi - lo > max_jump_ratio * 0.25 * (d[0] + d[1] + d[2] + d[3])) return std::nullopt;
+  return (1 - av) * ((1 - au) * d[0] + au * d[1]) + av * ((1 - au) * d[2] + au * d[3]);
+}
+
+std::optional<Eigen::Vector3d> LiftColorPixel(const Calibration& c, const cv::Mat& depth_m,
+                                              const Eigen::Vector2d& uv_vis,
+                                              double max_jump_ratio) {
+  const Eigen::Vector2d uv_ir = ColorToIr(c, uv_vis);
+  const std::optional<double> d = max_jump_ratio > 0
+                                      ? SampleDepthBilinear(c, depth_m, uv_ir, max_jump_ratio)
+                                      : SampleDepth(c, depth_m, uv_ir);
+  if (!d) return std::nullopt;
+  return BackProject(c, uv_ir, *d);
+}
+
+}  // namespace rgbdvo

@@ -1,0 +1,121 @@
+#include "rgbdvo/sources/tum_source.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "rgbdvo/io/image_reader.hpp"
+#include "rgbdvo/sensor/depth_encoding.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rgbdvo {
+
+void TumSourceOptions::Check() const {
+  if (!(max_time_diff_s > 0)) throw std::invalid_argument("max_time_diff_s must be > 0");
+  if (!(depth_units_per_m > 0)) throw std::invalid_argument("depth_units_per_m must be > 0");
+}
+
+std::vector<TumListEntry> ReadTumList(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open list file");
+  std::vector<TumListEntry> entries;
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    TumListEntry e;
+    if (!(fields >> e.timestamp >> e.path) || !std::isfinite(e.timestamp))
+      throw std::runtime_error(path + ":" + std::to_string(line_no) +
+                               ": expected 'timestamp path', got '" + line + "'");
+    entries.push_back(e);
+  }
+  return entries;
+}
+
+bool IsTumFolder(const std::string& folder) {
+  return fs::is_regular_file(fs::path(folder) / "rgb.txt") &&
+         fs::is_regular_file(fs::path(folder) / "depth.txt");
+}
+
+TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
+    : folder_(folder), options_(options) {
+  options_.Check();
+  if (!fs::is_directory(folder)) throw std::runtime_error(folder + ": no such folder");
+  for (const char* list : {"rgb.txt", "depth.txt"})
+    if (!fs::is_regular_file(fs::path(folder) / list))
+      throw std::runtime_error(folder + ": missing " + list + " (not a TUM RGB-D folder)");
+  const std::vector<TumListEntry> rgb = ReadTumList((fs::path(folder) / "rgb.txt").string());
+  std::vector<TumListEntry> depth = ReadTumList((fs::path(folder) / "depth.txt").string());
+  std::sort(depth.begin(), depth.end(),
+            [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });
+  for (const TumListEntry& r : rgb) {
+    auto it = std::lower_bound(depth.begin(), depth.end(), r.timestamp,
+                               [](const TumListEntry& d, double t) { return d.timestamp < t; });
+    const TumListEntry* best = nullptr;
+    if (it != depth.end()) best = &*it;
+    if (it != depth.begin()) {
+      const TumListEntry* before = &*(it - 1);
+      if (!best || r.timestamp - before->timestamp < best->timestamp - r.timestamp) best = before;
+    }
+    if (best && std::abs(best->timestamp - r.timestamp) <= options_.max_time_diff_s)
+      pairs_.push_back({r, *best});
+    else
+      unpaired_.push_back(r);
+  }
+  if (pairs_.empty())
+    throw std::runtime_error(folder + ": empty sequence (" + std::to_string(rgb.size()) +
+                             " rgb frames, none with a depth frame within " +
+                             std::to_string(options_.max_time_diff_s) + " s)");
+}
+
+std::optional<Frame> TumSource::Next() {
+  if (next_ >= pairs_.size()) return std::nullopt;
+  const Pair& p = pairs_[next_];
+  const std::string rgb_path = (fs::path(folder_) / p.rgb.path).string();
+  const std::string depth_path = (fs::path(folder_) / p.depth.path).string();
+  Frame f;
+  f.index = static_cast<int>(next_);
+  f.timestamp = p.depth.timestamp;
+  f.color_timestamp = p.rgb.timestamp;
+  f.name = p.rgb.path;
+  f.bgr = ReadImage(rgb_path, cv::IMREAD_COLOR);
+  if (f.bgr.empty())
+    throw std::runtime_error(rgb_path +
+                             ": cannot read colour image (missing, corrupt or truncated)");
+  const cv::Mat raw = ReadImage(depth_path, cv::IMREAD_UNCHANGED);
+  if (raw.empty())
+    throw std::runtime_error(depth_path +
+                             ": cannot read depth image (missing, corrupt or truncated)");
+  if (raw.type() != CV_16UC1)
+    throw std::runtime_error(depth_path + ": depth image must be 16-bit single channel");
+  if (raw.size() != f.bgr.size())
+    throw std::runtime_error(depth_path + ": depth image is " + std::to_string(raw.cols) + "x" +
+                             std::to_string(raw.rows) + " but colour image " + rgb_path + " is " +
+                             std::to_string(f.bgr.cols) + "x" + std::to_string(f.bgr.rows));
+  f.depth_m = DepthFromScaled16(raw, options_.depth_units_per_m);
+  ++next_;
+  return f;
+}
+
+bool TumSource::Skip() {
+  if (next_ >= pairs_.size()) return false;
+  ++next_;
+  return true;
+}
+
+std::string TumSource::Describe() const {
+  std::ostringstream s;
+  s << "TUM RGB-D folder " << folder_ << ": " << pairs_.size() << " rgb-depth pairs within "
+    << options_.max_time_diff_s << " s, " << unpaired_.size() << " rgb frames without depth, "
+    << "depth " << options_.depth_units_per_m << " units per metre";
+  return s.str();
+}
+
+}  // namespace rgbdvo

@@ -1,0 +1,105 @@
+#include "rgbdvo/synthetic/synthetic_kinect.hpp"
+
+#include <libfreenect.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "rgbdvo/capture/fakenect_recorder.hpp"
+#include "rgbdvo/sensor/kinect_depth.hpp"
+#include "rgbdvo/sources/fakenect_files.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rgbdvo {
+
+void SyntheticKinectOptions::Check() const {
+  if (ir_in_color.z() != 0.0) throw std::invalid_argument("ir_in_color.z must be 0");
+  if (!(reference_depth_m > 0)) throw std::invalid_argument("reference_depth_m must be > 0");
+  if (period_us <= 1000) throw std::invalid_argument("period_us must be > 1000");
+  if (color.width <= 0 || color.height <= 0 || ir.width <= 0 || ir.height <= 0)
+    throw std::invalid_argument("camera sizes must be > 0");
+}
+
+Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& o) {
+  o.Check();
+  Calibration c;
+  c.A = o.ir.fx / o.color.fx;
+  c.C = o.ir.fy / o.color.fy;
+  c.B = o.ir.cx - c.A * o.color.cx - o.ir.fx * o.ir_in_color.x() / o.reference_depth_m;
+  c.D = o.ir.cy - c.C * o.color.cy - o.ir.fy * o.ir_in_color.y() / o.reference_depth_m;
+  c.fx = o.ir.fx;
+  c.fy = o.ir.fy;
+  c.cx = o.ir.cx;
+  c.cy = o.ir.cy;
+  c.min_depth_m = 0.4;
+  c.max_depth_m = 8.0;
+  c.description =
+      "rgbdvo synthetic Kinect: IR camera offset from the colour camera; A-D exact at " +
+      std::to_string(o.reference_depth_m) + " m (synthetic_kinect.hpp)";
+  return c;
+}
+
+std::vector<Rigid3d> MakeKinectRangePath(int n) {
+  std::vector<Rigid3d> path = MakeSmoothPath(n);
+  Rigid3d forward = Rigid3d::Identity();
+  forward.translation() = Eigen::Vector3d(0, 0, 2.0);
+  for (Rigid3d& p : path) p = forward * p;
+  return path;
+}
+
+std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
+                                                   const SyntheticScene& scene,
+                                                   const SyntheticKinectOptions& o,
+                                                   const std::vector<Rigid3d>& world_from_color) {
+  const Calibration calib = SyntheticKinectCalibration(o);
+  FakenectRecorder recorder(folder);
+  Rigid3d color_from_ir = Rigid3d::Identity();
+  color_from_ir.translation() = o.ir_in_color;
+  std::ofstream gt(fs::path(folder) / "groundtruth.txt");
+  if (!gt) throw std::runtime_error(folder + "/groundtruth.txt: cannot create");
+  gt << "# IR camera poses relative to the first (TUM format; the odometry measures the IR "
+        "camera)\n# timestamp tx ty tz qx qy qz qw\n"
+     << std::fixed;
+  std::vector<Rigid3d> ir_poses;
+  Rigid3d ir0_from_world = Rigid3d::Identity();
+  for (size_t k = 0; k < world_from_color.size(); ++k) {
+    const int64_t t = o.start_us + static_cast<int64_t>(k) * o.period_us;
+    const uint32_t ts = static_cast<uint32_t>(500 + 2000000 * k);
+    const Rigid3d world_from_ir = world_from_color[k] * color_from_ir;
+    if (k == 0) ir0_from_world = world_from_ir.inverse();
+    cv::Mat rgb;
+    cv::cvtColor(scene.RenderColor(o.color, world_from_color[k]), rgb, cv::COLOR_BGR2RGB);
+    recorder.AddColor(t, ts, rgb.ptr<uint8_t>(), rgb.cols, rgb.rows);
+    if (o.accelerometer) {
+      // Gravity is +y (down) in the world frame; 819 counts per g (libfreenect.h).
+      const Eigen::Vector3d g =
+          world_from_color[k].linear().transpose() * Eigen::Vector3d(0, FREENECT_COUNTS_PER_G, 0);
+      freenect_raw_tilt_state state{};
+      state.accelerometer_x = static_cast<int16_t>(std::lround(g.x()));
+      state.accelerometer_y = static_cast<int16_t>(std::lround(g.y()));
+      state.accelerometer_z = static_cast<int16_t>(std::lround(g.z()));
+      state.tilt_status = TILT_STATUS_STOPPED;
+      recorder.AddAccel(t + 300, ts, &state, sizeof(state));
+    }
+    const cv::Mat raw = KinectRawFromDepth(scene.RenderDepth(o.ir, world_from_ir));
+    recorder.AddDepth(t + 1000, ts + 1000, raw.ptr<uint16_t>(), raw.cols, raw.rows);
+
+    const Rigid3d ir0_from_irk = ir0_from_world * world_from_ir;
+    ir_poses.push_back(ir0_from_irk);
+    const Eigen::Quaterniond q(ir0_from_irk.linear());
+    const Eigen::Vector3d p = ir0_from_irk.translation();
+    gt << std::setprecision(6) << static_cast<double>(t + 1000) * 1e-6 << ' ' << p.x() << ' '
+       << p.y() << ' ' << p.z() << ' ' << std::setprecision(7) << q.x() << ' ' << q.y() << ' '
+       << q.z() << ' ' << q.w() << '\n';
+  }
+  if (!gt.flush()) throw std::runtime_error(folder + "/groundtruth.txt: write failed");
+  SaveCalibration(calib, (fs::path(folder) / "calib.yaml").string());
+  return ir_poses;
+}
+
+}  // namespace rgbdvo

@@ -1,0 +1,127 @@
+#include "rgbdvo/sensor/camera.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace rgbdvo;
+
+namespace {
+
+Calibration PaperLike() {
+  Calibration c;  // K_ir of the paper (eq. 3)
+  c.A = 0.91;
+  c.B = 28.0;
+  c.C = 0.92;
+  c.D = 19.0;
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("ColorToIr applies eq. 1 per axis") {
+  const Calibration c = PaperLike();
+  const Eigen::Vector2d ir = ColorToIr(c, {100, 200});
+  CHECK(ir.x() == Approx(0.91 * 100 + 28));
+  CHECK(ir.y() == Approx(0.92 * 200 + 19));
+}
+
+TEST_CASE("IrToColor inverts ColorToIr") {
+  const Calibration c = PaperLike();
+  for (double u : {0.0, 123.4, 639.0})
+    for (double v : {0.0, 240.0, 479.0}) {
+      const Eigen::Vector2d back = IrToColor(c, ColorToIr(c, {u, v}));
+      CHECK(back.x() == Approx(u).margin(1e-9));
+      CHECK(back.y() == Approx(v).margin(1e-9));
+    }
+  CHECK(IrToColor(c, {0.91 * 100 + 28, 0.92 * 200 + 19}).y() == Approx(200));
+}
+
+TEST_CASE("BackProject and ProjectIr round-trip and keep Z = depth") {
+  const Calibration c = PaperLike();
+  for (double u : {0.0, 123.4, 639.0})
+    for (double v : {0.0, 240.0, 479.0})
+      for (double d : {0.5, 2.0, 7.9}) {
+        const Eigen::Vector3d X = BackProject(c, {u, v}, d);
+        CHECK(X.z() == Approx(d));
+        const Eigen::Vector2d uv = ProjectIr(c, X);
+        CHECK(uv.x() == Approx(u).margin(1e-9));
+        CHECK(uv.y() == Approx(v).margin(1e-9));
+      }
+  // The principal point looks straight ahead.
+  CHECK(BackProject(c, {c.cx, c.cy}, 3.0).head<2>().norm() == Approx(0).margin(1e-12));
+}
+
+TEST_CASE("LiftColorPixel maps through eq. 1 and samples the depth there") {
+  const Calibration c = PaperLike();
+  cv::Mat depth(480, 640, CV_32F, cv::Scalar(0));
+  const Eigen::Vector2d uv_vis(300, 200);
+  const Eigen::Vector2d uv_ir = ColorToIr(c, uv_vis);  // (301, 203)
+  depth.at<float>(static_cast<int>(std::round(uv_ir.y())),
+                  static_cast<int>(std::round(uv_ir.x()))) = 2.5f;
+  const auto X = LiftColorPixel(c, depth, uv_vis);
+  REQUIRE(X);
+  CHECK(X->z() == Approx(2.5));
+  CHECK(X->x() == Approx((uv_ir.x() - c.cx) / c.fx * 2.5));
+  // The same colour pixel with the depth reading cleared: excluded.
+  depth.setTo(0);
+  CHECK_FALSE(LiftColorPixel(c, depth, uv_vis));
+}
+
+TEST_CASE("Depth 0, out-of-range depth and out-of-image pixels are excluded") {
+  Calibration c;
+  cv::Mat depth(480, 640, CV_32F, cv::Scalar(2.0f));
+  depth.at<float>(10, 10) = 0.0f;
+  depth.at<float>(20, 20) = static_cast<float>(c.max_depth_m + 1);
+  depth.at<float>(30, 30) = static_cast<float>(c.min_depth_m / 2);
+  CHECK_FALSE(SampleDepth(c, depth, {10, 10}));
+  CHECK_FALSE(SampleDepth(c, depth, {20, 20}));
+  CHECK_FALSE(SampleDepth(c, depth, {30, 30}));
+  CHECK(SampleDepth(c, depth, {11, 10}));
+  for (const Eigen::Vector2d& uv :
+       {Eigen::Vector2d(-0.6, 5), Eigen::Vector2d(5, -0.6), Eigen::Vector2d(639.6, 5),
+        Eigen::Vector2d(5, 479.6), Eigen::Vector2d(1e9, 1e9), Eigen::Vector2d(NAN, 5)})
+    CHECK_FALSE(SampleDepth(c, depth, uv));
+  CHECK(SampleDepth(c, depth, {639.4, 479.4}));
+  // A colour pixel whose mapped IR pixel leaves the image is excluded too.
+  c.B = 50;
+  CHECK_FALSE(LiftColorPixel(c, depth, {630, 100}));
+}
+
+TEST_CASE("BackProject removes lens distortion and ProjectIr puts it back") {
+  Calibration c;  // TUM fr1 colour camera (Sturm et al. 2012)
+  c.fx = 517.3;
+  c.fy = 516.5;
+  c.cx = 318.6;
+  c.cy = 255.3;
+  c.dist_ir = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
+  for (double u : {5.0, 200.0, 318.6, 500.0, 635.0})
+    for (double v : {5.0, 255.3, 470.0}) {
+      const Eigen::Vector3d X = BackProject(c, {u, v}, 2.0);
+      CHECK(X.z() == 2.0);
+      const Eigen::Vector2d uv = ProjectIr(c, X);
+      CHECK(uv.x() == Approx(u).margin(1e-6));
+      CHECK(uv.y() == Approx(v).margin(1e-6));
+    }
+  // Off-centre, distortion matters: the undistorted ray differs from the pinhole one by pixels.
+  Calibration pinhole = c;
+  pinhole.dist_ir = {0, 0, 0, 0, 0};
+  const Eigen::Vector3d corner = BackProject(c, {5, 5}, 2.0),
+                        plain = BackProject(pinhole, {5, 5}, 2.0);
+  CHECK((corner - plain).norm() * c.fx / 2.0 > 3.0);
+}
+
+TEST_CASE("Bilinear depth interpolates a slope and refuses a depth edge") {
+  Calibration c;
+  cv::Mat depth(10, 10, CV_32F);
+  for (int v = 0; v < 10; ++v)
+    for (int u = 0; u < 10; ++u) depth.at<float>(v, u) = static_cast<float>(2.0 + 0.01 * u);
+  const auto d = SampleDepthBilinear(c, depth, {3.25, 4.5}, 0.03);
+  REQUIRE(d);
+  CHECK(*d == Approx(2.0325));
+  CHECK(SampleDepthBilinear(c, depth, {9.0, 9.0}, 0.03));  // the last pixel is inside
+  CHECK_FALSE(SampleDepthBilinear(c, depth, {9.01, 3.0}, 0.03));
+  depth.at<float>(5, 4) = 3.0f;  // a foreground/background edge next to (3.5, 4.5)
+  CHECK_FALSE(SampleDepthBilinear(c, depth, {3.5, 4.5}, 0.03));
+  depth.at<float>(5, 4) = 0.0f;  // a hole
+  CHECK_FALSE(SampleDepthBilinear(c, depth, {3.5, 4.5}, 0.03));
+  CHECK(SampleDepthBilinear(c, depth, {1.5, 1.5}, 0.03));
+}
