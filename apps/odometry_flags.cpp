@@ -2,7 +2,7 @@
 
 namespace rgbdvo::cli {
 namespace {
-const char* kGroup = "Odometry (see README; --preset paper = Fiala & Ufkes 2011 exactly)";
+const char* kGroup = "Odometry (see docs/method.md; --preset paper = Fiala & Ufkes 2011 exactly)";
 }
 
 template <typename T>
