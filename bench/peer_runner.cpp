@@ -2,13 +2,14 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <stdexcept>
 
+#include "rgbdvo/io/trajectory_io.hpp"
 #include "rgbdvo/sources/tum_source.hpp"
+#include "rgbdvo/util/stopwatch.hpp"
 
 namespace rgbdvo::bench {
 namespace {
@@ -17,13 +18,9 @@ struct PeerArgs {
   std::string folder, calib, method, tum;
 };
 
-void WriteTumLine(std::ofstream& out, const std::string& path, double timestamp,
-                  const Rigid3d& world_from_cam) {
-  const Eigen::Quaterniond q(world_from_cam.linear());
-  const Eigen::Vector3d& t = world_from_cam.translation();
-  out << std::fixed << std::setprecision(6) << timestamp << ' ' << t.x() << ' ' << t.y() << ' '
-      << t.z() << ' ' << std::setprecision(7) << q.x() << ' ' << q.y() << ' ' << q.z() << ' '
-      << q.w() << '\n';
+void WriteTumRow(std::ofstream& out, const std::string& path, double timestamp,
+                 const Rigid3d& world_from_cam) {
+  rgbdvo::WriteTumLine(out, timestamp, world_from_cam);
   out.flush();
   if (!out) throw std::runtime_error(path + ": write failed");
 }
@@ -45,7 +42,7 @@ int Run(const std::string& name, const PeerArgs& a, const PeerFactory& factory) 
             << (calib.dist_ir == decltype(calib.dist_ir){} ? "" : "; dist_ir ignored") << ")"
             << "\n# method: " << peer->Describe() << std::endl;
 
-  const auto start = std::chrono::steady_clock::now();
+  const rgbdvo::Stopwatch start;
   Rigid3d world_from_cam = Rigid3d::Identity();
   int frames = 0, failures = 0;
   while (std::optional<Frame> frame = source.Next()) {
@@ -58,11 +55,10 @@ int Run(const std::string& name, const PeerArgs& a, const PeerFactory& factory) 
         ++failures;  // identity motion: keep the previous pose
       }
     }
-    WriteTumLine(out, a.tum, frame->timestamp, world_from_cam);
+    WriteTumRow(out, a.tum, frame->timestamp, world_from_cam);
     ++frames;
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = start.Seconds();
   std::cout << "failures=" << failures << " of " << std::max(frames - 1, 0) << " pairs\n";
   std::cout << "frames=" << frames << " fps=" << std::setprecision(3) << std::fixed
             << (seconds > 0 ? frames / seconds : 0.0) << std::endl;

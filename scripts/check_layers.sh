@@ -17,7 +17,7 @@ declare -A may_use=(
   [capture]="geometry sensor io util sources"
   [odometry]="geometry sensor io util features features/sift estimation sources"
   [pipeline]="geometry sensor io util features features/sift estimation sources odometry"
-  [evaluation]="geometry io"
+  [evaluation]="geometry io util"
   [calibrate]="geometry sensor io sources"
   [synthetic]="geometry sensor io util sources capture"
 )

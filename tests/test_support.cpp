@@ -4,11 +4,12 @@
 #include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+
+#include "rgbdvo/util/temp_dir.hpp"
 
 namespace rgbdvo::test {
 
@@ -64,13 +65,7 @@ Calibration CalibFor(const PinholeCamera& cam) {
 }
 
 std::string MakeTempDir(const std::string& tag) {
-  static std::atomic<int> counter{0};
-  const auto dir =
-      std::filesystem::temp_directory_path() /
-      ("rgbdvo_test_" + tag + "_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
+  return rgbdvo::MakeTempDir("rgbdvo_test_" + tag + "_");
 }
 
 std::string Slurp(const std::string& path) {

@@ -5,31 +5,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/io/text.hpp"
+
 namespace rgbdvo {
 namespace {
 
 constexpr const char* kHeader = "u_vis,v_vis,u_ir,v_ir";
-
-std::string Trim(const std::string& s) {
-  const size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-double ParseNumber(const std::string& field, const std::string& where) {
-  const std::string t = Trim(field);
-  size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(t, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (t.empty() || used != t.size())
-    throw std::runtime_error(where + ": '" + t + "' is not a number");
-  if (!std::isfinite(x)) throw std::runtime_error(where + ": '" + t + "' is not finite");
-  return x;
-}
 
 }  // namespace
 

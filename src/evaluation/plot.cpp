@@ -13,6 +13,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/util/temp_dir.hpp"
+
 namespace rgbdvo {
 namespace {
 
@@ -89,20 +91,6 @@ std::string ReadAll(const fs::path& path) {
   return s.str();
 }
 
-// Removes a folder when it goes out of scope.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "rgbdvo_plot_XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw std::runtime_error("cannot create a temporary folder");
-    path = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
 }  // namespace
 
 void PlotOptions::Check() const {
@@ -148,11 +136,12 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
     }
   }
 
-  TempDir tmp;
-  WritePoints(tmp.path / "est.dat", est);
-  WritePoints(tmp.path / "gt.dat", gt);
-  WritePoints(tmp.path / "start.dat", {est.front()});
-  WritePoints(tmp.path / "end.dat", {est.back()});
+  const ScopedTempDir scoped_tmp("rgbdvo_plot_");
+  const fs::path tmp = scoped_tmp.path();
+  WritePoints(tmp / "est.dat", est);
+  WritePoints(tmp / "gt.dat", gt);
+  WritePoints(tmp / "start.dat", {est.front()});
+  WritePoints(tmp / "end.dat", {est.back()});
 
   std::string subtitle = "estimate: " + std::to_string(est.size()) + " poses";
   if (result.aligned) {
@@ -225,25 +214,25 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
      << end_style << " title 'end'\n"
      << "unset multiplot\n";
   {
-    std::ofstream out(tmp.path / "plot.gp");
+    std::ofstream out(tmp / "plot.gp");
     out << gp.str();
-    if (!out) throw std::runtime_error((tmp.path / "plot.gp").string() + ": cannot write");
+    if (!out) throw std::runtime_error((tmp / "plot.gp").string() + ": cannot write");
   }
   // gnuplot writes into our temporary folder; the image is then copied to where the user asked,
   // so the user's path never enters the script.
-  const int code = RunInFolder(options.gnuplot, tmp.path, "plot.gp", tmp.path / "err.txt");
+  const int code = RunInFolder(options.gnuplot, tmp, "plot.gp", tmp / "err.txt");
   if (code == 127)
     throw std::runtime_error("plot: '" + options.gnuplot +
                              "' not found; install the Debian package gnuplot-nox "
                              "(scripts/setup.sh does)");
   if (code != 0) {
-    std::string err = ReadAll(tmp.path / "err.txt");
+    std::string err = ReadAll(tmp / "err.txt");
     std::replace(err.begin(), err.end(), '\n', ' ');
     throw std::runtime_error("plot: " + options.gnuplot + " failed (exit " + std::to_string(code) +
                              ") writing " + png_path + ": " + err.substr(0, 300));
   }
   std::error_code ec;
-  const fs::path image = tmp.path / "plot.png";
+  const fs::path image = tmp / "plot.png";
   if (!fs::exists(image, ec) || fs::file_size(image, ec) == 0)
     throw std::runtime_error("plot: " + png_path + ": gnuplot wrote no image");
   const fs::path parent = fs::path(png_path).parent_path();

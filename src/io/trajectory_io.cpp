@@ -10,15 +10,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/io/text.hpp"
+
 namespace rgbdvo {
 namespace {
-
-std::string Trim(const std::string& s) {
-  const size_t b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  const size_t e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
 
 std::vector<std::string> Split(const std::string& line, bool csv) {
   std::vector<std::string> fields;
@@ -30,16 +25,6 @@ std::vector<std::string> Split(const std::string& line, bool csv) {
     for (std::string f; s >> f;) fields.push_back(f);
   }
   return fields;
-}
-
-double ParseNumber(const std::string& field, const std::string& where, const std::string& name) {
-  const char* begin = field.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(begin, &end);
-  if (field.empty() || end != begin + field.size() || errno == ERANGE || !std::isfinite(v))
-    throw std::runtime_error(where + ": " + name + " '" + field + "' is not a finite number");
-  return v;
 }
 
 }  // namespace
@@ -80,7 +65,7 @@ Trajectory ReadTrajectory(const std::string& path) {
                                  (csv ? std::to_string(column.size()) + " comma-separated" : "8") +
                                  " fields (timestamp tx ty tz qx qy qz qw), found " +
                                  std::to_string(f.size()));
-      v[k] = ParseNumber(f[col], where, kNames[k]);
+      v[k] = ParseNumber(f[col], where + ": " + kNames[k]);
     }
     const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (q.norm() < 1e-6) throw std::runtime_error(where + ": quaternion has zero norm");
@@ -104,17 +89,32 @@ Trajectory ReadTrajectory(const std::string& path) {
   return traj;
 }
 
+void WritePoseFields(std::ostream& out, const Rigid3d& T, char sep) {
+  const std::ios::fmtflags flags = out.flags();
+  const std::streamsize precision = out.precision();
+  const Eigen::Quaterniond q(T.linear());
+  const Eigen::Vector3d& t = T.translation();
+  out << std::fixed << std::setprecision(6) << t.x() << sep << t.y() << sep << t.z() << sep
+      << std::setprecision(7) << q.x() << sep << q.y() << sep << q.z() << sep << q.w();
+  out.flags(flags);
+  out.precision(precision);
+}
+
+void WriteTumLine(std::ostream& out, double timestamp, const Rigid3d& world_from_cam) {
+  const std::ios::fmtflags flags = out.flags();
+  const std::streamsize precision = out.precision();
+  out << std::fixed << std::setprecision(6) << timestamp << ' ';
+  out.flags(flags);
+  out.precision(precision);
+  WritePoseFields(out, world_from_cam, ' ');
+  out << '\n';
+}
+
 void WriteTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n" << std::fixed;
-  for (const StampedPose& p : poses) {
-    const Eigen::Quaterniond q(p.world_from_cam.linear());
-    const Eigen::Vector3d& t = p.world_from_cam.translation();
-    out << std::setprecision(6) << p.timestamp << ' ' << t.x() << ' ' << t.y() << ' ' << t.z()
-        << ' ' << std::setprecision(7) << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w()
-        << '\n';
-  }
+  out << "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n";
+  for (const StampedPose& p : poses) WriteTumLine(out, p.timestamp, p.world_from_cam);
   out.flush();
   if (!out) throw std::runtime_error(path + ": write failed");
 }

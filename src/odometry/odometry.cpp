@@ -1,7 +1,6 @@
 #include "rgbdvo/odometry/odometry.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -9,15 +8,9 @@
 #include "rgbdvo/estimation/depth_term.hpp"
 #include "rgbdvo/geometry/motion_prior.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
+#include "rgbdvo/util/stopwatch.hpp"
 
 namespace rgbdvo {
-namespace {
-
-double Since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 void OdometryOptions::Check() const {
   features.Check();
@@ -134,9 +127,9 @@ Odometry::Odometry(const OdometryOptions& options, const Calibration& calib)
 }
 
 FrameResult Odometry::Process(const Frame& frame) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   Features features = extractor_.Extract(frame.bgr);
-  const double seconds = Since(t0);
+  const double seconds = t0.Seconds();
   FrameResult r = Process(frame, std::move(features));
   r.times.features = seconds;
   return r;
@@ -146,12 +139,12 @@ RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference
                                            const std::vector<cv::DMatch>& matches, FrameResult* r,
                                            std::vector<int>* match_of_pair) {
   r->matches = static_cast<int>(matches.size());
-  auto t0 = std::chrono::steady_clock::now();
+  Stopwatch t0;
   const std::vector<PointPair> pairs = PairMatches(ref.points, cur.points, matches, match_of_pair);
-  r->times.lifting += Since(t0);
+  r->times.lifting += t0.Seconds();
   r->pairs = static_cast<int>(pairs.size());
 
-  t0 = std::chrono::steady_clock::now();
+  t0.Restart();
   RansacResult ransac = EstimateRigidRansac(options_.ransac, pairs, rng_);
   if (ransac.success && options_.refine_enabled) {
     // Refine on the RANSAC inliers, measure the frame's noise scale there, re-select inliers by
@@ -179,7 +172,7 @@ RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference
       ransac.prev_from_cur = T;
     }
   }
-  r->times.ransac += Since(t0);
+  r->times.ransac += t0.Seconds();
   r->inliers = static_cast<int>(ransac.inliers.size());
   return ransac;
 }
@@ -187,7 +180,7 @@ RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference
 RansacResult Odometry::Estimate(const Reference& ref, const Reference& cur,
                                 const Rigid3d& world_from_cur_pred, FrameResult* r,
                                 std::string* reason) {
-  auto t0 = std::chrono::steady_clock::now();
+  Stopwatch t0;
   const Rigid3d cur_from_ref = world_from_cur_pred.inverse() * ref.world_from_cam;
   const std::vector<std::optional<Eigen::Vector2d>> predicted =
       PredictKeypoints(calib_, ref.points, cur_from_ref);
@@ -202,16 +195,16 @@ RansacResult Odometry::Estimate(const Reference& ref, const Reference& cur,
   } else {
     matches = MatchFeatures(options_.matching, ref.features, cur.features);
   }
-  r->times.matching += Since(t0);
+  r->times.matching += t0.Seconds();
   std::vector<int> match_of_pair;
   RansacResult ransac = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
   *reason = CheckMotion(options_.verify, ransac);
   if (guided && !reason->empty()) {
     // The prior was wrong (or the guided matches too few): brute force, as without it.
     ++r->fallbacks;
-    t0 = std::chrono::steady_clock::now();
+    t0.Restart();
     matches = MatchFeatures(options_.matching, ref.features, cur.features);
-    r->times.matching += Since(t0);
+    r->times.matching += t0.Seconds();
     ransac = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
     *reason = CheckMotion(options_.verify, ransac);
   }
@@ -258,7 +251,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
               .inverse();
   }
 
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   Reference cur;
   cur.points =
       LiftKeypointsAcrossTime(calib_, options_.lifting, frame.depth_m, features, depth_from_color);
@@ -273,7 +266,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     cur.depth_points = SampleDepthPoints(depth_rays_, frame.depth_m, depth_from_color.inverse(),
                                          options_.depth_term_step);
   }
-  r.times.lifting += Since(t0);
+  r.times.lifting += t0.Seconds();
 
   if (!started_) {
     started_ = true;
@@ -309,10 +302,10 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     return r;
   }
   if (options_.depth_fallback && !last_.depth_m.empty()) {
-    const auto t1 = std::chrono::steady_clock::now();
+    const Stopwatch t1;
     const DepthAlignResult aligned = depth_aligner_->Align(
         last_.depth_m, cur.depth_m, last_.world_from_cam.inverse() * world_from_cur_pred);
-    r.times.ransac += Since(t1);
+    r.times.ransac += t1.Seconds();
     if (aligned.success) {
       // The frame becomes the last estimated one; the keyframe stays (its sharp features are
       // what the next frame is matched against first).

@@ -1,7 +1,6 @@
 #include "rgbdvo/pipeline/run.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
@@ -16,14 +15,10 @@
 
 #include "rgbdvo/odometry/tracking_gaps.hpp"
 #include "rgbdvo/sensor/depth_check.hpp"
+#include "rgbdvo/util/stopwatch.hpp"
 
 namespace rgbdvo {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // A frame with its features, or the end of the source, or the exception that stopped it (from
 // the source or the feature extraction).
@@ -38,9 +33,9 @@ struct Decoded {
 // travels in d.error.
 void ReadNext(FrameSource& source, Decoded* d) {
   try {
-    const Clock::time_point t0 = Clock::now();
+    const Stopwatch t0;
     d->frame = source.Next();
-    d->decode_seconds = Since(t0);
+    d->decode_seconds = t0.Seconds();
   } catch (...) {
     d->error = std::current_exception();
   }
@@ -50,9 +45,9 @@ void ReadNext(FrameSource& source, Decoded* d) {
 void ExtractFeatures(const SiftExtractor& extractor, Decoded* d) {
   if (!d->frame) return;
   try {
-    const Clock::time_point t0 = Clock::now();
+    const Stopwatch t0;
     d->features = extractor.Extract(d->frame->bgr);
-    d->feature_seconds = Since(t0);
+    d->feature_seconds = t0.Seconds();
   } catch (...) {
     d->error = std::current_exception();
   }
@@ -90,10 +85,10 @@ class FeatureWorkers {
   // The next frame in sequence (or the end, or the error where the source failed); waits.
   // `waited` gets the seconds spent waiting.
   Decoded Next(double* waited) {
-    const Clock::time_point t0 = Clock::now();
+    const Stopwatch t0;
     std::unique_lock<std::mutex> lock(mutex_);
     ready_.wait(lock, [&] { return done_.count(consumed_) > 0; });
-    *waited = Since(t0);
+    *waited = t0.Seconds();
     auto it = done_.find(consumed_);
     Decoded d = std::move(it->second);
     done_.erase(it);
@@ -242,7 +237,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   options.Check();
   RunSummary summary;
   summary.threads = options.EffectiveThreads();
-  const Clock::time_point start = Clock::now();
+  const Stopwatch start;
   double inlier_sum = 0;
   TrackingGaps gaps;
   std::optional<FeatureWorkers> workers;
@@ -260,9 +255,9 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
         on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
     FrameResult result = odometry.Process(*d.frame, std::move(d.features));
     result.times.features = d.feature_seconds;
-    const Clock::time_point t0 = Clock::now();
+    const Stopwatch t0;
     for (TrajectoryWriter* w : writers) w->Write(result);
-    summary.write_seconds += Since(t0);
+    summary.write_seconds += t0.Seconds();
 
     ++summary.frames;
     switch (result.status) {
@@ -297,7 +292,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     if (result.fallbacks > 0) ++summary.frames_with_fallback;
     if (result.status == FrameStatus::kAccepted)
       for (float e : result.prediction_error_px) summary.prediction_error_px.Add(e);
-    summary.seconds = Since(start);
+    summary.seconds = start.Seconds();
     if (on_frame) on_frame(result);
   }
   if (std::optional<std::string> warning = gaps.Finish(); warning && on_warning)
@@ -305,7 +300,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   summary.longest_gap_frames = gaps.longest_frames();
   summary.longest_gap_seconds = gaps.longest_seconds();
   summary.mean_inliers = summary.frames > 1 ? inlier_sum / (summary.frames - 1) : 0.0;
-  summary.seconds = Since(start);
+  summary.seconds = start.Seconds();
   return summary;
 }
 

@@ -5,17 +5,9 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "rgbdvo/io/trajectory_io.hpp"
+
 namespace rgbdvo {
-namespace {
-
-void WritePose(std::ostream& out, const Rigid3d& T, char sep) {
-  const Eigen::Quaterniond q(T.linear());
-  const Eigen::Vector3d& t = T.translation();
-  out << std::setprecision(6) << t.x() << sep << t.y() << sep << t.z() << sep
-      << std::setprecision(7) << q.x() << sep << q.y() << sep << q.z() << sep << q.w();
-}
-
-}  // namespace
 
 FileTrajectoryWriter::FileTrajectoryWriter(const std::string& path) : path_(path) {
   if (path == "-") {
@@ -45,7 +37,7 @@ CsvTrajectoryWriter::CsvTrajectoryWriter(const std::string& path) : FileTrajecto
 
 void CsvTrajectoryWriter::Write(const FrameResult& r) {
   out_ << r.frame << ',' << std::setprecision(6) << r.timestamp << ',';
-  WritePose(out_, r.world_from_cam, ',');
+  WritePoseFields(out_, r.world_from_cam, ',');
   out_ << ',' << r.matches << ',' << r.inliers << ',' << r.StatusString() << '\n';
   EndRow();
 }
@@ -56,9 +48,7 @@ TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path) : FileTrajecto
 }
 
 void TumTrajectoryWriter::Write(const FrameResult& r) {
-  out_ << std::setprecision(6) << r.timestamp << ' ';
-  WritePose(out_, r.world_from_cam, ' ');
-  out_ << '\n';
+  WriteTumLine(out_, r.timestamp, r.world_from_cam);
   EndRow();
 }
 

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "rgbdvo/io/trajectory_io.hpp"
 #include "rgbdvo/sensor/depth_encoding.hpp"
 
 namespace fs = std::filesystem;
@@ -163,8 +164,7 @@ std::vector<double> WriteTumSequence(const std::string& folder, const SyntheticS
   if (!rgb_list || !depth_list || !gt) throw std::runtime_error(folder + ": cannot write lists");
   rgb_list << "# color images\n# timestamp filename\n" << std::fixed << std::setprecision(6);
   depth_list << "# depth maps\n# timestamp filename\n" << std::fixed << std::setprecision(6);
-  gt << "# ground truth trajectory\n# timestamp tx ty tz qx qy qz qw\n"
-     << std::fixed << std::setprecision(6);
+  gt << "# ground truth trajectory\n# timestamp tx ty tz qx qy qz qw\n";
   std::vector<double> stamps;
   for (size_t k = 0; k < world_from_cam.size(); ++k) {
     const double t = 1000.0 + static_cast<double>(k) / 30.0;
@@ -178,10 +178,7 @@ std::vector<double> WriteTumSequence(const std::string& folder, const SyntheticS
       throw std::runtime_error(folder + ": cannot write frame " + name);
     rgb_list << t << ' ' << rgb << '\n';
     depth_list << t + 0.004 << ' ' << depth << '\n';
-    const Eigen::Quaterniond q(world_from_cam[k].linear());
-    const Eigen::Vector3d p = world_from_cam[k].translation();
-    gt << t << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << ' ' << q.x() << ' ' << q.y() << ' '
-       << q.z() << ' ' << q.w() << '\n';
+    WriteTumLine(gt, t, world_from_cam[k]);
     stamps.push_back(t);
   }
   return stamps;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "rgbdvo/capture/fakenect_recorder.hpp"
+#include "rgbdvo/io/trajectory_io.hpp"
 #include "rgbdvo/sensor/kinect_depth.hpp"
 #include "rgbdvo/sources/fakenect_files.hpp"
 
@@ -91,11 +92,7 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
 
     const Rigid3d ir0_from_irk = ir0_from_world * world_from_ir;
     ir_poses.push_back(ir0_from_irk);
-    const Eigen::Quaterniond q(ir0_from_irk.linear());
-    const Eigen::Vector3d p = ir0_from_irk.translation();
-    gt << std::setprecision(6) << static_cast<double>(t + 1000) * 1e-6 << ' ' << p.x() << ' '
-       << p.y() << ' ' << p.z() << ' ' << std::setprecision(7) << q.x() << ' ' << q.y() << ' '
-       << q.z() << ' ' << q.w() << '\n';
+    WriteTumLine(gt, static_cast<double>(t + 1000) * 1e-6, ir0_from_irk);
   }
   if (!gt.flush()) throw std::runtime_error(folder + "/groundtruth.txt: write failed");
   SaveCalibration(calib, (fs::path(folder) / "calib.yaml").string());

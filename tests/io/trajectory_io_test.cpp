@@ -3,7 +3,10 @@
 
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 
+#include "rgbdvo/io/text.hpp"
 #include "test_support.hpp"
 
 using namespace rgbdvo;
@@ -99,7 +102,8 @@ TEST_CASE("Bad trajectory rows are errors naming file and line") {
   CHECK_THAT(ErrorOf(path), Catch::Contains(path + ":3:") && Catch::Contains("found 7"));
 
   path = WriteFile("nan.txt", "1 0 0 abc 0 0 0 1\n");
-  CHECK_THAT(ErrorOf(path), Catch::Contains(path + ":1:") && Catch::Contains("tz 'abc'"));
+  CHECK_THAT(ErrorOf(path),
+             Catch::Contains(path + ":1:") && Catch::Contains("tz: 'abc' is not a number"));
 
   path = WriteFile("zero_q.txt", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 0\n");
   CHECK_THAT(ErrorOf(path), Catch::Contains(path + ":2:") && Catch::Contains("zero norm"));
@@ -117,4 +121,26 @@ TEST_CASE("Empty and missing trajectory files are errors naming the file") {
   path = WriteFile("header_only.csv", "frame,timestamp,tx,ty,tz,qx,qy,qz,qw\n");
   CHECK_THAT(ErrorOf(path), Catch::Contains("no poses"));
   CHECK_THAT(ErrorOf("/nonexistent/t.txt"), Catch::Contains("/nonexistent/t.txt"));
+}
+
+TEST_CASE("A TUM line has fixed decimals whatever the stream's format") {
+  Rigid3d T = Rigid3d::Identity();
+  T.translation() = Eigen::Vector3d(1.5, -0.25, 1e-7);
+  std::ostringstream out;
+  out << std::scientific << std::setprecision(2);
+  WriteTumLine(out, 1305031102.175304, T);
+  CHECK(out.str() ==
+        "1305031102.175304 1.500000 -0.250000 0.000000 0.0000000 0.0000000 "
+        "0.0000000 1.0000000\n");
+  out << 0.5;  // the caller's format is left as it was
+  CHECK(out.str().substr(out.str().size() - 8) == "5.00e-01");
+}
+
+TEST_CASE("ParseNumber refuses what is not a whole finite number, naming the place") {
+  CHECK(ParseNumber(" 2.5\t", "f:1") == 2.5);
+  CHECK_THROWS_WITH(ParseNumber("4px", "f:2"), "f:2: '4px' is not a number");
+  CHECK_THROWS_WITH(ParseNumber("", "f:3"), "f:3: '' is not a number");
+  CHECK_THROWS_WITH(ParseNumber("1e999", "f:4"), "f:4: '1e999' is not finite");
+  CHECK_THROWS_WITH(ParseNumber("nan", "f:5"), "f:5: 'nan' is not finite");
+  CHECK(Trim(" \t a b \r\n") == "a b");
 }

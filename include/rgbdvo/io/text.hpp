@@ -1,0 +1,17 @@
+#pragma once
+// Reading numbers from the text files others make (trajectories, pixel pairs, lists): one rule
+// for every parser, so each refuses the same things with the same message.
+
+#include <string>
+
+namespace rgbdvo {
+
+// s without leading and trailing spaces, tabs, CR and LF.
+std::string Trim(const std::string& s);
+
+// The number in field (surrounding whitespace ignored), or std::runtime_error "<where>: '<field>'
+// is not a number" (empty, trailing characters: "4px") or "... is not finite" (inf, nan, out of
+// double's range). `where` names the place, e.g. "file.csv:3" or "file.txt:3: tx".
+double ParseNumber(const std::string& field, const std::string& where);
+
+}  // namespace rgbdvo

@@ -1,0 +1,21 @@
+#pragma once
+// Wall-clock time of a stage (steady clock, seconds): the per-stage timings of a run.
+
+#include <chrono>
+
+namespace rgbdvo {
+
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  // Seconds since construction or the last Restart().
+  double Seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  void Restart() { start_ = std::chrono::steady_clock::now(); }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace rgbdvo

@@ -1,0 +1,25 @@
+#include "rgbdvo/util/temp_dir.hpp"
+
+#include <stdlib.h>  // mkdtemp (POSIX)
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+namespace rgbdvo {
+
+std::string MakeTempDir(const std::string& prefix) {
+  std::string tmpl = (std::filesystem::temp_directory_path() / (prefix + "XXXXXX")).string();
+  if (!mkdtemp(tmpl.data()))
+    throw std::runtime_error(tmpl + ": cannot create a temporary folder (" + std::strerror(errno) +
+                             ")");
+  return tmpl;
+}
+
+ScopedTempDir::~ScopedTempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+}  // namespace rgbdvo
