@@ -69,9 +69,11 @@ cv::Mat ColorizeDepth(const cv::Mat& depth_m) {
 }
 
 void ClickerOptions::Check() const {
-  if (!(scale >= 0.25 && scale <= 4)) throw std::invalid_argument("scale must be in [0.25, 4]");
-  if (panel_height_px < 100) throw std::invalid_argument("panel_height_px must be >= 100");
-  if (frame_step < 1) throw std::invalid_argument("frame_step must be >= 1");
+  if (!(scale >= 0.25 && scale <= 4))
+    throw std::invalid_argument("ClickerOptions.scale must be in [0.25, 4]");
+  if (panel_height_px < 100)
+    throw std::invalid_argument("ClickerOptions.panel_height_px must be >= 100");
+  if (frame_step < 1) throw std::invalid_argument("ClickerOptions.frame_step must be >= 1");
   fit.Check();
 }
 

@@ -40,9 +40,11 @@ double Spread(const std::vector<double>& x, const std::vector<bool>& use) {
 
 void MappingFitOptions::Check() const {
   if (min_pairs < 3)
-    throw std::invalid_argument("min_pairs must be >= 3 (got " + std::to_string(min_pairs) + ")");
-  if (!(min_spread_px > 0)) throw std::invalid_argument("min_spread_px must be > 0");
-  if (!(outlier_px > 0)) throw std::invalid_argument("outlier_px must be > 0");
+    throw std::invalid_argument("MappingFitOptions.min_pairs must be >= 3 (got " +
+                                std::to_string(min_pairs) + ")");
+  if (!(min_spread_px > 0))
+    throw std::invalid_argument("MappingFitOptions.min_spread_px must be > 0");
+  if (!(outlier_px > 0)) throw std::invalid_argument("MappingFitOptions.outlier_px must be > 0");
 }
 
 std::string MappingFit::Brief() const {

@@ -31,12 +31,16 @@ int64_t WallClockMicros() {
 }
 
 void KinectSourceOptions::Check() const {
-  if (device < 0) throw std::invalid_argument("device must be >= 0");
-  if (max_frames < 0) throw std::invalid_argument("max_frames must be >= 0");
-  if (!(max_seconds >= 0)) throw std::invalid_argument("max_seconds must be >= 0");
-  if (queue_capacity < 1) throw std::invalid_argument("queue_capacity must be >= 1");
-  if (!(max_time_diff_s > 0)) throw std::invalid_argument("max_time_diff_s must be > 0");
-  if (!(stall_timeout_s > 0)) throw std::invalid_argument("stall_timeout_s must be > 0");
+  if (device < 0) throw std::invalid_argument("KinectSourceOptions.device must be >= 0");
+  if (max_frames < 0) throw std::invalid_argument("KinectSourceOptions.max_frames must be >= 0");
+  if (!(max_seconds >= 0))
+    throw std::invalid_argument("KinectSourceOptions.max_seconds must be >= 0");
+  if (queue_capacity < 1)
+    throw std::invalid_argument("KinectSourceOptions.queue_capacity must be >= 1");
+  if (!(max_time_diff_s > 0))
+    throw std::invalid_argument("KinectSourceOptions.max_time_diff_s must be > 0");
+  if (!(stall_timeout_s > 0))
+    throw std::invalid_argument("KinectSourceOptions.stall_timeout_s must be > 0");
 }
 
 std::string CaptureStats::Brief() const {

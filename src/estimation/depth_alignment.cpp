@@ -57,15 +57,17 @@ std::pair<cv::Ptr<cv::rgbd::OdometryFrame>, cv::Ptr<cv::rgbd::OdometryFrame>> Ca
 
 void DepthAlignOptions::Check() const {
   if (!(max_translation_m > 0))
-    throw std::invalid_argument("depth alignment max_translation_m must be > 0");
+    throw std::invalid_argument("DepthAlignOptions.max_translation_m must be > 0");
   if (!(max_rotation_deg > 0 && max_rotation_deg <= 180))
-    throw std::invalid_argument("depth alignment max_rotation_deg must be in (0, 180]");
+    throw std::invalid_argument("DepthAlignOptions.max_rotation_deg must be in (0, 180]");
   if (!(min_agreement >= 0 && min_agreement <= 1))
-    throw std::invalid_argument("depth alignment min_agreement must be in [0, 1]");
+    throw std::invalid_argument("DepthAlignOptions.min_agreement must be in [0, 1]");
   if (downsample < 1 || downsample > 8)
-    throw std::invalid_argument("depth alignment downsample must be in [1, 8]");
+    throw std::invalid_argument("DepthAlignOptions.downsample must be in [1, 8]");
   if (!(agreement_sigmas > 0 && depth_noise_coeff >= 0 && agreement_floor_m >= 0))
-    throw std::invalid_argument("depth alignment agreement tolerances must be positive");
+    throw std::invalid_argument(
+        "DepthAlignOptions.agreement_sigmas must be > 0, depth_noise_coeff and agreement_floor_m "
+        ">= 0");
 }
 
 double DepthAgreement(const DepthAlignOptions& o, const Calibration& calib,

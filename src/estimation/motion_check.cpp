@@ -6,12 +6,14 @@
 namespace rgbdvo {
 
 void MotionCheckOptions::Check() const {
-  if (min_inliers < 3) throw std::invalid_argument("min_inliers must be >= 3");
-  if (!(max_translation_m > 0)) throw std::invalid_argument("max_translation_m must be > 0");
-  if (!(max_rotation_deg > 0)) throw std::invalid_argument("max_rotation_deg must be > 0");
+  if (min_inliers < 3) throw std::invalid_argument("MotionCheckOptions.min_inliers must be >= 3");
+  if (!(max_translation_m > 0))
+    throw std::invalid_argument("MotionCheckOptions.max_translation_m must be > 0");
+  if (!(max_rotation_deg > 0))
+    throw std::invalid_argument("MotionCheckOptions.max_rotation_deg must be > 0");
 }
 
-std::string CheckMotion(const MotionCheckOptions& o, const RansacResult& r) {
+std::string CheckMotion(const MotionCheckOptions& o, const MotionEstimate& r) {
   std::ostringstream reason;
   if (!r.success)
     reason << "ransac_" << r.reason;

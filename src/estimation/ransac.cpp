@@ -30,11 +30,12 @@ double Rms(const std::vector<PointPair>& pairs, const std::vector<int>& idx, con
 }  // namespace
 
 void RansacOptions::Check() const {
-  if (max_trials < 1) throw std::invalid_argument("ransac max_trials must be >= 1");
-  if (sample_size < 3) throw std::invalid_argument("ransac sample_size must be >= 3");
-  if (!(inlier_distance_m > 0)) throw std::invalid_argument("ransac inlier_distance_m must be > 0");
+  if (max_trials < 1) throw std::invalid_argument("RansacOptions.max_trials must be >= 1");
+  if (sample_size < 3) throw std::invalid_argument("RansacOptions.sample_size must be >= 3");
+  if (!(inlier_distance_m > 0))
+    throw std::invalid_argument("RansacOptions.inlier_distance_m must be > 0");
   if (!(confidence >= 0 && confidence < 1))
-    throw std::invalid_argument("ransac confidence must be in [0, 1)");
+    throw std::invalid_argument("RansacOptions.confidence must be in [0, 1)");
 }
 
 std::string RansacResult::Brief() const {

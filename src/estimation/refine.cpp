@@ -105,11 +105,12 @@ Rigid3d Apply(const Vec6& d, const Rigid3d& T) {
 }  // namespace
 
 void RefineOptions::Check() const {
-  if (!(pixel_sigma > 0)) throw std::invalid_argument("refine pixel_sigma must be > 0");
-  if (!(depth_noise_coeff > 0)) throw std::invalid_argument("refine depth_noise_coeff must be > 0");
-  if (!(huber_sigmas > 0)) throw std::invalid_argument("refine huber_sigmas must be > 0");
-  if (!(inlier_sigmas > 0)) throw std::invalid_argument("refine inlier_sigmas must be > 0");
-  if (max_iterations < 1) throw std::invalid_argument("refine max_iterations must be >= 1");
+  if (!(pixel_sigma > 0)) throw std::invalid_argument("RefineOptions.pixel_sigma must be > 0");
+  if (!(depth_noise_coeff > 0))
+    throw std::invalid_argument("RefineOptions.depth_noise_coeff must be > 0");
+  if (!(huber_sigmas > 0)) throw std::invalid_argument("RefineOptions.huber_sigmas must be > 0");
+  if (!(inlier_sigmas > 0)) throw std::invalid_argument("RefineOptions.inlier_sigmas must be > 0");
+  if (max_iterations < 1) throw std::invalid_argument("RefineOptions.max_iterations must be >= 1");
 }
 
 std::string RefineResult::Brief() const {

@@ -52,8 +52,8 @@ std::string JsonStats(const ErrorStats& s) {
 }  // namespace
 
 void EvaluationOptions::Check() const {
-  if (!(max_dt_s > 0)) throw std::runtime_error("max_dt_s must be > 0 s");
-  if (!(delta_s > 0)) throw std::runtime_error("delta_s must be > 0 s");
+  if (!(max_dt_s > 0)) throw std::invalid_argument("EvaluationOptions.max_dt_s must be > 0 s");
+  if (!(delta_s > 0)) throw std::invalid_argument("EvaluationOptions.delta_s must be > 0 s");
 }
 
 ErrorStats ComputeStats(std::vector<double> e) {

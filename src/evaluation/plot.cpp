@@ -95,11 +95,11 @@ std::string ReadAll(const fs::path& path) {
 
 void PlotOptions::Check() const {
   if (width_px < 200 || width_px > 10000)
-    throw std::runtime_error("width_px must be in [200, 10000]");
+    throw std::invalid_argument("PlotOptions.width_px must be in [200, 10000]");
   if (height_px < 150 || height_px > 10000)
-    throw std::runtime_error("height_px must be in [150, 10000]");
-  if (!(max_dt_s > 0)) throw std::runtime_error("max_dt_s must be > 0 s");
-  if (gnuplot.empty()) throw std::runtime_error("gnuplot: executable name is empty");
+    throw std::invalid_argument("PlotOptions.height_px must be in [150, 10000]");
+  if (!(max_dt_s > 0)) throw std::invalid_argument("PlotOptions.max_dt_s must be > 0 s");
+  if (gnuplot.empty()) throw std::invalid_argument("PlotOptions.gnuplot must not be empty");
 }
 
 std::string PlotResult::Brief() const {

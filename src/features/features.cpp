@@ -7,13 +7,16 @@ namespace rgbdvo {
 
 void FeatureOptions::Check() const {
   if (implementation != "rgbdvo" && implementation != "opencv")
-    throw std::invalid_argument("implementation must be rgbdvo or opencv, not '" + implementation +
-                                "'");
-  if (max_features < 0) throw std::invalid_argument("max_features must be >= 0 (0 = all)");
-  if (octave_layers < 1) throw std::invalid_argument("octave_layers must be >= 1");
-  if (!(contrast_threshold > 0)) throw std::invalid_argument("contrast_threshold must be > 0");
-  if (!(edge_threshold > 0)) throw std::invalid_argument("edge_threshold must be > 0");
-  if (!(sigma > 0)) throw std::invalid_argument("sigma must be > 0");
+    throw std::invalid_argument("FeatureOptions.implementation must be rgbdvo or opencv, not '" +
+                                implementation + "'");
+  if (max_features < 0)
+    throw std::invalid_argument("FeatureOptions.max_features must be >= 0 (0 = all)");
+  if (octave_layers < 1) throw std::invalid_argument("FeatureOptions.octave_layers must be >= 1");
+  if (!(contrast_threshold > 0))
+    throw std::invalid_argument("FeatureOptions.contrast_threshold must be > 0");
+  if (!(edge_threshold > 0))
+    throw std::invalid_argument("FeatureOptions.edge_threshold must be > 0");
+  if (!(sigma > 0)) throw std::invalid_argument("FeatureOptions.sigma must be > 0");
 }
 
 SiftOptions FeatureOptions::ToSiftOptions() const {

@@ -9,8 +9,9 @@
 namespace rgbdvo {
 
 void GuidedMatchOptions::Check() const {
-  if (!(radius_px > 0)) throw std::invalid_argument("guided radius_px must be > 0");
-  if (!(ratio > 0 && ratio <= 1)) throw std::invalid_argument("guided ratio must be in (0, 1]");
+  if (!(radius_px > 0)) throw std::invalid_argument("GuidedMatchOptions.radius_px must be > 0");
+  if (!(ratio > 0 && ratio <= 1))
+    throw std::invalid_argument("GuidedMatchOptions.ratio must be in (0, 1]");
 }
 
 namespace {

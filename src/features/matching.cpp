@@ -6,7 +6,8 @@
 namespace rgbdvo {
 
 void MatchOptions::Check() const {
-  if (!(ratio > 0 && ratio <= 1)) throw std::invalid_argument("ratio must be in (0, 1]");
+  if (!(ratio > 0 && ratio <= 1))
+    throw std::invalid_argument("MatchOptions.ratio must be in (0, 1]");
 }
 
 std::vector<cv::DMatch> MatchFeatures(const MatchOptions& o, const Features& prev,

@@ -20,10 +20,13 @@ void OdometryOptions::Check() const {
   verify.Check();
   refine.Check();
   if (!(keyframe_inlier_ratio >= 0 && keyframe_inlier_ratio <= 1))
-    throw std::invalid_argument("keyframe_inlier_ratio must be in [0, 1]");
-  if (!(guided_radius_px >= 0)) throw std::invalid_argument("guided_radius_px must be >= 0");
-  if (max_rejected_run < 0) throw std::invalid_argument("max_rejected_run must be >= 0");
-  if (depth_term_step < 0) throw std::invalid_argument("depth_term_step must be >= 0");
+    throw std::invalid_argument("OdometryOptions.keyframe_inlier_ratio must be in [0, 1]");
+  if (!(guided_radius_px >= 0))
+    throw std::invalid_argument("OdometryOptions.guided_radius_px must be >= 0");
+  if (max_rejected_run < 0)
+    throw std::invalid_argument("OdometryOptions.max_rejected_run must be >= 0");
+  if (depth_term_step < 0)
+    throw std::invalid_argument("OdometryOptions.depth_term_step must be >= 0");
 }
 
 OdometryOptions PresetOptions(const std::string& name) {
@@ -135,9 +138,9 @@ FrameResult Odometry::Process(const Frame& frame) {
   return r;
 }
 
-RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference& cur,
-                                           const std::vector<cv::DMatch>& matches, FrameResult* r,
-                                           std::vector<int>* match_of_pair) {
+MotionEstimate Odometry::EstimateFromMatches(const Reference& ref, const Reference& cur,
+                                             const std::vector<cv::DMatch>& matches, FrameResult* r,
+                                             std::vector<int>* match_of_pair) {
   r->matches = static_cast<int>(matches.size());
   Stopwatch t0;
   const std::vector<PointPair> pairs = PairMatches(ref.points, cur.points, matches, match_of_pair);
@@ -145,12 +148,14 @@ RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference
   r->pairs = static_cast<int>(pairs.size());
 
   t0.Restart();
-  RansacResult ransac = EstimateRigidRansac(options_.ransac, pairs, rng_);
-  if (ransac.success && options_.refine_enabled) {
+  MotionEstimate estimate =
+      MotionEstimate::FromRansac(EstimateRigidRansac(options_.ransac, pairs, rng_));
+  if (estimate.success && options_.refine_enabled) {
     // Refine on the RANSAC inliers, measure the frame's noise scale there, re-select inliers by
     // whitened error at that scale, refine again at that scale.
     const double f = 0.5 * (calib_.fx + calib_.fy);
-    Rigid3d T =
+    const RansacResult& ransac = estimate.ransac;
+    const Rigid3d T =
         RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
     const NoiseScale noise = EstimateNoiseScale(options_.refine, f, pairs, ransac.inliers, T);
     const RefineOptions scaled = ScaleNoise(options_.refine, noise);
@@ -167,19 +172,19 @@ RansacResult Odometry::EstimateFromMatches(const Reference& ref, const Reference
         // depth camera saw the same motion, so its surfaces are trusted no better.
         dense->ScaleNoise(std::max(EstimateDepthTermScale(*dense, T), noise.pixel));
       }
-      T = RefineMotion(scaled, f, pairs, inliers, T, dense ? &*dense : nullptr).prev_from_cur;
-      ransac.inliers = std::move(inliers);
-      ransac.prev_from_cur = T;
+      estimate.refine = RefineMotion(scaled, f, pairs, inliers, T, dense ? &*dense : nullptr);
+      estimate.prev_from_cur = estimate.refine->prev_from_cur;
+      estimate.inliers = std::move(inliers);
     }
   }
   r->times.ransac += t0.Seconds();
-  r->inliers = static_cast<int>(ransac.inliers.size());
-  return ransac;
+  r->inliers = static_cast<int>(estimate.inliers.size());
+  return estimate;
 }
 
-RansacResult Odometry::Estimate(const Reference& ref, const Reference& cur,
-                                const Rigid3d& world_from_cur_pred, FrameResult* r,
-                                std::string* reason) {
+MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
+                                  const Rigid3d& world_from_cur_pred, FrameResult* r,
+                                  std::string* reason) {
   Stopwatch t0;
   const Rigid3d cur_from_ref = world_from_cur_pred.inverse() * ref.world_from_cam;
   const std::vector<std::optional<Eigen::Vector2d>> predicted =
@@ -197,26 +202,26 @@ RansacResult Odometry::Estimate(const Reference& ref, const Reference& cur,
   }
   r->times.matching += t0.Seconds();
   std::vector<int> match_of_pair;
-  RansacResult ransac = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
-  *reason = CheckMotion(options_.verify, ransac);
+  MotionEstimate motion = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
+  *reason = CheckMotion(options_.verify, motion);
   if (guided && !reason->empty()) {
     // The prior was wrong (or the guided matches too few): brute force, as without it.
     ++r->fallbacks;
     t0.Restart();
     matches = MatchFeatures(options_.matching, ref.features, cur.features);
     r->times.matching += t0.Seconds();
-    ransac = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
-    *reason = CheckMotion(options_.verify, ransac);
+    motion = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
+    *reason = CheckMotion(options_.verify, motion);
   }
   r->prediction_error_px.clear();
-  for (int k : ransac.inliers) {
+  for (int k : motion.inliers) {
     const cv::DMatch& m = matches[match_of_pair[k]];
     if (!predicted[m.queryIdx]) continue;
     const cv::Point2f& pt = cur.features.keypoints[m.trainIdx].pt;
     r->prediction_error_px.push_back(
         static_cast<float>((*predicted[m.queryIdx] - Eigen::Vector2d(pt.x, pt.y)).norm()));
   }
-  return ransac;
+  return motion;
 }
 
 FrameResult Odometry::Process(const Frame& frame, Features features) {
@@ -276,12 +281,12 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     return r;
   }
 
-  RansacResult motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
+  MotionEstimate motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
   bool recovered = false;
   if (!r.reason.empty() && last_.frame != key_.frame) {
     // The keyframe is out of reach: try the last accepted frame, which then becomes the keyframe.
     std::string reason;
-    RansacResult fallback = Estimate(last_, cur, world_from_cur_pred, &r, &reason);
+    MotionEstimate fallback = Estimate(last_, cur, world_from_cur_pred, &r, &reason);
     if (reason.empty()) {
       key_ = last_;
       motion = std::move(fallback);

@@ -8,7 +8,7 @@ namespace rgbdvo {
 
 void LiftOptions::Check() const {
   if (!(max_depth_jump_ratio >= 0))
-    throw std::invalid_argument("max_depth_jump_ratio must be >= 0");
+    throw std::invalid_argument("LiftOptions.max_depth_jump_ratio must be >= 0");
 }
 
 KeypointPoints LiftKeypoints(const Calibration& calib, const LiftOptions& options,

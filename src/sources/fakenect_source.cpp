@@ -15,7 +15,8 @@ namespace fs = std::filesystem;
 namespace rgbdvo {
 
 void FakenectSourceOptions::Check() const {
-  if (!(max_time_diff_s > 0)) throw std::invalid_argument("max_time_diff_s must be > 0");
+  if (!(max_time_diff_s > 0))
+    throw std::invalid_argument("FakenectSourceOptions.max_time_diff_s must be > 0");
 }
 
 namespace {

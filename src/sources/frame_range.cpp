@@ -6,8 +6,9 @@
 namespace rgbdvo {
 
 void FrameRange::Check() const {
-  if (start < 0) throw std::invalid_argument("start must be >= 0");
-  if (max_frames < 0) throw std::invalid_argument("max_frames must be >= 0 (0 = to the end)");
+  if (start < 0) throw std::invalid_argument("FrameRange.start must be >= 0");
+  if (max_frames < 0)
+    throw std::invalid_argument("FrameRange.max_frames must be >= 0 (0 = to the end)");
 }
 
 FrameRangeSource::FrameRangeSource(std::unique_ptr<FrameSource> inner, const FrameRange& range)

@@ -16,8 +16,10 @@ namespace fs = std::filesystem;
 namespace rgbdvo {
 
 void TumSourceOptions::Check() const {
-  if (!(max_time_diff_s > 0)) throw std::invalid_argument("max_time_diff_s must be > 0");
-  if (!(depth_units_per_m > 0)) throw std::invalid_argument("depth_units_per_m must be > 0");
+  if (!(max_time_diff_s > 0))
+    throw std::invalid_argument("TumSourceOptions.max_time_diff_s must be > 0");
+  if (!(depth_units_per_m > 0))
+    throw std::invalid_argument("TumSourceOptions.depth_units_per_m must be > 0");
 }
 
 std::vector<TumListEntry> ReadTumList(const std::string& path) {

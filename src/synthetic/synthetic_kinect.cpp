@@ -19,11 +19,14 @@ namespace fs = std::filesystem;
 namespace rgbdvo {
 
 void SyntheticKinectOptions::Check() const {
-  if (ir_in_color.z() != 0.0) throw std::invalid_argument("ir_in_color.z must be 0");
-  if (!(reference_depth_m > 0)) throw std::invalid_argument("reference_depth_m must be > 0");
-  if (period_us <= 1000) throw std::invalid_argument("period_us must be > 1000");
+  if (ir_in_color.z() != 0.0)
+    throw std::invalid_argument("SyntheticKinectOptions.ir_in_color.z must be 0");
+  if (!(reference_depth_m > 0))
+    throw std::invalid_argument("SyntheticKinectOptions.reference_depth_m must be > 0");
+  if (period_us <= 1000)
+    throw std::invalid_argument("SyntheticKinectOptions.period_us must be > 1000");
   if (color.width <= 0 || color.height <= 0 || ir.width <= 0 || ir.height <= 0)
-    throw std::invalid_argument("camera sizes must be > 0");
+    throw std::invalid_argument("SyntheticKinectOptions.color and .ir sizes must be > 0");
 }
 
 Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& o) {

@@ -6,8 +6,8 @@ using namespace rgbdvo;
 
 namespace {
 
-RansacResult Result(int inliers, double trans_m, double rot_deg) {
-  RansacResult r;
+MotionEstimate Result(int inliers, double trans_m, double rot_deg) {
+  MotionEstimate r;
   r.success = true;
   r.inliers.resize(inliers);
   r.prev_from_cur.linear() = AxisAngle({0, 1, 0}, rot_deg * M_PI / 180);
@@ -23,7 +23,7 @@ TEST_CASE("Motion check applies the paper's limits") {
   CHECK(CheckMotion(o, Result(14, 0.1, 1)) == "inliers<15");
   CHECK(CheckMotion(o, Result(100, 0.51, 1)) == "translation>0.5m");
   CHECK(CheckMotion(o, Result(100, 0.1, 61)) == "rotation>60deg");
-  RansacResult failed;
+  MotionEstimate failed;
   failed.reason = "pairs<4";
   CHECK(CheckMotion(o, failed) == "ransac_pairs<4");
 }

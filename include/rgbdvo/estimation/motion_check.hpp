@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "rgbdvo/estimation/ransac.hpp"
+#include "rgbdvo/estimation/motion_estimate.hpp"
 
 namespace rgbdvo {
 
@@ -16,6 +16,6 @@ struct MotionCheckOptions {
 
 // "" when the motion is plausible, else a short reason without commas or spaces, such as
 // "inliers<15" or "translation>0.5m".
-std::string CheckMotion(const MotionCheckOptions& options, const RansacResult& result);
+std::string CheckMotion(const MotionCheckOptions& options, const MotionEstimate& estimate);
 
 }  // namespace rgbdvo

@@ -8,6 +8,7 @@
 
 #include "rgbdvo/estimation/depth_alignment.hpp"
 #include "rgbdvo/estimation/motion_check.hpp"
+#include "rgbdvo/estimation/motion_estimate.hpp"
 #include "rgbdvo/estimation/ransac.hpp"
 #include "rgbdvo/estimation/refine.hpp"
 #include "rgbdvo/features/features.hpp"
@@ -144,12 +145,12 @@ class Odometry {
   };
   // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided
   // by world_from_cur_pred, with a brute-force retry if that fails verification.
-  RansacResult Estimate(const Reference& ref, const Reference& cur,
-                        const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
+  MotionEstimate Estimate(const Reference& ref, const Reference& cur,
+                          const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
   // RANSAC and refinement on the 3D pairs of `matches`; match_of_pair as in PairMatches.
-  RansacResult EstimateFromMatches(const Reference& ref, const Reference& cur,
-                                   const std::vector<cv::DMatch>& matches, FrameResult* r,
-                                   std::vector<int>* match_of_pair);
+  MotionEstimate EstimateFromMatches(const Reference& ref, const Reference& cur,
+                                     const std::vector<cv::DMatch>& matches, FrameResult* r,
+                                     std::vector<int>* match_of_pair);
 
   // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy.
   void Advance(Reference cur, bool new_keyframe);

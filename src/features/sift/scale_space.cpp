@@ -26,9 +26,11 @@ void Blur(const cv::Mat& src, cv::Mat& dst, double sigma, double kernel_sigmas,
 }  // namespace
 
 void ScaleSpaceOptions::Check() const {
-  if (octave_layers < 1) throw std::invalid_argument("octave_layers must be >= 1");
-  if (!(sigma > kInitialBlur)) throw std::invalid_argument("sigma must be > 0.5");
-  if (!(kernel_sigmas >= 2)) throw std::invalid_argument("kernel_sigmas must be >= 2");
+  if (octave_layers < 1)
+    throw std::invalid_argument("ScaleSpaceOptions.octave_layers must be >= 1");
+  if (!(sigma > kInitialBlur)) throw std::invalid_argument("ScaleSpaceOptions.sigma must be > 0.5");
+  if (!(kernel_sigmas >= 2))
+    throw std::invalid_argument("ScaleSpaceOptions.kernel_sigmas must be >= 2");
 }
 
 ScaleSpace::ScaleSpace(const ScaleSpaceOptions& options) : options_(options) {

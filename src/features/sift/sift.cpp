@@ -111,9 +111,11 @@ bool Refine(const Octave& o, int S, float contrast_threshold, float edge_thresho
 
 void SiftOptions::Check() const {
   scale_space.Check();
-  if (!(contrast_threshold > 0)) throw std::invalid_argument("contrast_threshold must be > 0");
-  if (!(edge_threshold > 0)) throw std::invalid_argument("edge_threshold must be > 0");
-  if (max_features < 0) throw std::invalid_argument("max_features must be >= 0 (0 = all)");
+  if (!(contrast_threshold > 0))
+    throw std::invalid_argument("SiftOptions.contrast_threshold must be > 0");
+  if (!(edge_threshold > 0)) throw std::invalid_argument("SiftOptions.edge_threshold must be > 0");
+  if (max_features < 0)
+    throw std::invalid_argument("SiftOptions.max_features must be >= 0 (0 = all)");
 }
 
 Sift::Sift(const SiftOptions& options) : options_(options), scale_space_(options.scale_space) {
