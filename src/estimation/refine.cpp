@@ -173,6 +173,19 @@ RefineOptions ScaleNoise(RefineOptions o, const NoiseScale& scale) {
   return o;
 }
 
+double RefineCost(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
+                  const std::vector<int>& idx, const Rigid3d& T, const DepthPlaneTerm* dense,
+                  Vec6* gradient) {
+  Mat6 H;
+  Vec6 g;
+  const double cost = Evaluate(o, f, pairs, idx, dense, T, gradient ? &H : nullptr, &g);
+  if (gradient) {
+    const size_t n = idx.size() + (dense ? dense->size() : 0);
+    *gradient = n == 0 ? Vec6::Zero() : Vec6(g / static_cast<double>(n));
+  }
+  return cost;
+}
+
 RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
                           const std::vector<int>& idx, const Rigid3d& initial,
                           const DepthPlaneTerm* dense) {

@@ -98,3 +98,38 @@ TEST_CASE("Refinement with the measured scale recovers a motion under blur-like 
   CHECK(in_scaled > 0.97 * pairs.size());
   CHECK(in_model < 0.8 * pairs.size());
 }
+
+TEST_CASE("The refinement's gradient matches central differences of its cost") {
+  std::mt19937 rng(3);
+  Rigid3d truth = Rigid3d::Identity();
+  truth.linear() = AxisAngle({0.3, 1, -0.2}, 0.08);
+  truth.translation() = Eigen::Vector3d(0.05, -0.02, 0.04);
+  // Noise of several sigmas, so that part of the residuals lie beyond the Huber threshold and
+  // both branches of the robust cost are checked; evaluated away from the minimum.
+  const std::vector<PointPair> pairs = NoisyPairs(rng, truth, 60, 3.0, 0.02);
+  Rigid3d at = truth;
+  at.linear() = AxisAngle({1, 0, 0}, 0.01) * at.linear();
+  at.translation() += Eigen::Vector3d(0.004, 0.002, -0.003);
+  const RefineOptions options;
+  Eigen::Matrix<double, 6, 1> gradient;
+  RefineCost(options, kFocalPx, pairs, All(pairs.size()), at, nullptr, &gradient);
+  constexpr double kH = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
+    d(k) = kH;
+    const auto moved = [&](double sign) {
+      Rigid3d E = Rigid3d::Identity();
+      const Eigen::Vector3d w = sign * d.head<3>();
+      if (w.norm() > 0) E.linear() = AxisAngle(w, w.norm());
+      E.translation() = sign * d.tail<3>();
+      return E * at;
+    };
+    const double numeric =
+        (RefineCost(options, kFocalPx, pairs, All(pairs.size()), moved(+1), nullptr, nullptr) -
+         RefineCost(options, kFocalPx, pairs, All(pairs.size()), moved(-1), nullptr, nullptr)) /
+        (2 * kH);
+    INFO("component " << k << ": analytic " << gradient(k) << ", numeric " << numeric);
+    CHECK(gradient(k) == Approx(numeric).epsilon(1e-4).margin(1e-6 * gradient.norm()));
+  }
+  CHECK(gradient.norm() > 1.0);  // away from the minimum: the check is not of zeros
+}

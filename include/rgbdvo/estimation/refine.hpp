@@ -42,6 +42,15 @@ RefineResult RefineMotion(const RefineOptions& options, double focal_px,
                           const Rigid3d& initial_prev_from_cur,
                           const DepthPlaneTerm* dense = nullptr);
 
+// The cost RefineMotion minimises at prev_from_cur (the mean robust cost over the pairs and the
+// dense points) and, if gradient is given, its gradient for a left perturbation
+// Exp(delta) * prev_from_cur, delta = (omega, v): the hand-written derivatives its
+// Gauss-Newton steps use, exposed so that they can be checked against the cost.
+double RefineCost(const RefineOptions& options, double focal_px,
+                  const std::vector<PointPair>& pairs, const std::vector<int>& indices,
+                  const Rigid3d& prev_from_cur, const DepthPlaneTerm* dense,
+                  Eigen::Matrix<double, 6, 1>* gradient);
+
 // Whitened symmetric error of one pair under prev_from_cur (the larger of the two directions,
 // in sigmas): the inlier test that grows with depth.
 double WhitenedError(const RefineOptions& options, double focal_px, const PointPair& pair,
