@@ -6,6 +6,28 @@
 #include <sstream>
 
 #include "commands.hpp"
+
+#if !RGBDVO_WITH_KINECT
+
+#include <stdexcept>
+
+namespace rgbdvo::cli {
+
+// Built without libfreenect (cmake -DRGBDVO_WITH_KINECT=OFF): the command says so.
+void AddCaptureCommand(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("capture", "live capture (not in this build: no libfreenect)");
+  cmd->allow_extras();
+  cmd->callback([] {
+    throw std::runtime_error(
+        "this rgbdvo was built without Kinect capture (rebuild with -DRGBDVO_WITH_KINECT=ON, "
+        "which needs libfreenect-dev)");
+  });
+}
+
+}  // namespace rgbdvo::cli
+
+#else
+
 #include "rgbdvo/capture/kinect_source.hpp"
 #include "rgbdvo/pipeline/run.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
@@ -39,7 +61,7 @@ int Capture(CaptureArgs& a) {
   a.outputs.RefuseInputs({a.calib});
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
-  const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
+  const std::vector<std::unique_ptr<TrajectoryWriter> > writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
 
@@ -117,3 +139,5 @@ void AddCaptureCommand(CLI::App& app) {
 }
 
 }  // namespace rgbdvo::cli
+
+#endif  // RGBDVO_WITH_KINECT
