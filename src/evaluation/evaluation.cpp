@@ -42,10 +42,19 @@ std::string JsonString(const std::string& s) {
   return out.str() + '"';
 }
 
-std::string JsonStats(const ErrorStats& s) {
+// The statistics, or null for each when they could not be computed (no pose or pair): a reader
+// must not mistake "not computed" for a perfect 0.
+std::string JsonStats(const ErrorStats& s, bool computed) {
   std::ostringstream out;
-  out << std::setprecision(9) << "{\"rmse\": " << s.rmse << ", \"mean\": " << s.mean
-      << ", \"median\": " << s.median << ", \"max\": " << s.max << "}";
+  out << std::setprecision(9);
+  const auto value = [&](double v) -> std::ostream& {
+    return computed ? (out << v) : (out << "null");
+  };
+  out << "{\"rmse\": ";
+  value(s.rmse) << ", \"mean\": ";
+  value(s.mean) << ", \"median\": ";
+  value(s.median) << ", \"max\": ";
+  value(s.max) << "}";
   return out.str();
 }
 
@@ -268,11 +277,11 @@ std::string EvaluationReport::Json() const {
     << ", \"delta_s\": " << options.delta_s
     << ",\n \"ate\": {\"success\": " << (ate.success ? "true" : "false")
     << ", \"matched\": " << ate.matched << ", \"reason\": " << JsonString(ate.reason)
-    << ", \"error_m\": " << JsonStats(ate.error_m)
+    << ", \"error_m\": " << JsonStats(ate.error_m, ate.success)
     << "},\n \"rpe\": {\"success\": " << (rpe.success ? "true" : "false")
     << ", \"pairs\": " << rpe.pairs << ", \"reason\": " << JsonString(rpe.reason)
-    << ", \"trans_m\": " << JsonStats(rpe.trans_m) << ", \"rot_deg\": " << JsonStats(rpe.rot_deg)
-    << "}}\n";
+    << ", \"trans_m\": " << JsonStats(rpe.trans_m, rpe.success)
+    << ", \"rot_deg\": " << JsonStats(rpe.rot_deg, rpe.success) << "}}\n";
   return s.str();
 }
 

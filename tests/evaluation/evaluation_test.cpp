@@ -167,4 +167,9 @@ TEST_CASE("Evaluation refuses no overlap and bad options, and reports too short 
   CHECK_FALSE(r.rpe.success);
   CHECK_THAT(r.Table(), Catch::Contains("n/a"));
   CHECK_THAT(r.Json(), Catch::Contains("\"rpe\": {\"success\": false"));
+  // What could not be computed is null, never a perfect 0; what was computed is a number.
+  CHECK_THAT(r.Json(), Catch::Contains("\"trans_m\": {\"rmse\": null, \"mean\": null, "
+                                       "\"median\": null, \"max\": null}"));
+  CHECK_THAT(r.Json(), Catch::Contains("\"rot_deg\": {\"rmse\": null"));
+  CHECK_THAT(r.Json(), Catch::Contains("\"error_m\": {\"rmse\": 0"));
 }
