@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include "rgbdvo/sensor/kinect_depth.hpp"
 #include "rgbdvo/sources/fakenect_files.hpp"
@@ -52,8 +53,10 @@ TEST_CASE("FakenectSource pairs each colour frame with its depth frame, in metre
     const std::optional<Frame> f = source.Next();
     REQUIRE(f);
     CHECK(f->index == k);
+    // Stamped by the device's clock (60 MHz ticks; the depth frame 1000 ticks after the colour
+    // frame) from the first entry's host time.
     CHECK(f->color_timestamp == Approx((o.start_us + k * o.period_us) * 1e-6).margin(1e-6));
-    CHECK(f->timestamp == Approx((o.start_us + k * o.period_us + 1000) * 1e-6).margin(1e-6));
+    CHECK(f->timestamp - f->color_timestamp == Approx(1000 / 60.0 * 1e-6).margin(1e-6));
     CHECK(f->bgr.size() == cv::Size(160, 120));
     // The depth is the IR camera's Z, to within the raw quantisation (< 2 cm within 2.5 m).
     const cv::Mat truth = SyntheticScene().RenderDepth(o.ir, path[k] * color_from_ir);
@@ -123,4 +126,30 @@ TEST_CASE("OpenRecording detects the fakenect layout, with or without INDEX.txt"
     if (e.path().extension() != ".yaml") fs::remove(e.path());
   CHECK_THROWS_WITH(OpenRecording(dir, {}),
                     Catch::Contains("unknown recording layout") && Catch::Contains("INDEX.txt"));
+}
+
+TEST_CASE("A fakenect recording is stamped by the device clock, not by jittered arrival times") {
+  // On a busy host the arrival times in the file names lag by tens of milliseconds, differently
+  // for each frame; the stamps (and so the depth delay and the motion prior) must not follow.
+  const std::string dir = SmallRecording("fjitter", 5);
+  const std::string jittered = MakeTempDir("fjitter2");
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int> jitter_us(0, 40000);
+  std::ofstream index(jittered + "/INDEX.txt");
+  const std::vector<std::string> lines = IndexLines(dir);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    FakenectName n = *ParseFakenectName(lines[i]);
+    if (i > 0) n.wallclock_us += jitter_us(rng);  // the first entry anchors the clock
+    fs::copy_file(fs::path(dir) / lines[i], fs::path(jittered) / n.ToString());
+    index << n.ToString() << "\n";
+  }
+  index.close();
+  FakenectSource original(dir, {}), shaken(jittered, {});
+  REQUIRE(shaken.size() == original.size());
+  for (size_t k = 0; k < original.size(); ++k) {
+    const std::optional<Frame> a = original.Next(), b = shaken.Next();
+    REQUIRE((a && b));
+    CHECK(b->color_timestamp == Approx(a->color_timestamp).margin(1e-6));
+    CHECK(b->timestamp == Approx(a->timestamp).margin(1e-6));
+  }
 }
