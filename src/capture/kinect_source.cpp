@@ -138,11 +138,8 @@ void KinectSource::HandleFrame(bool is_depth, const void* data, uint32_t timesta
   const int64_t t = WallClockMicros();
   last_frame_us_ = t;
   try {
-    Stamped<LiveFrame> frame{clock_.Micros(timestamp), {t, {}}};
-    if (!anchored_) {
-      host_minus_device_us_ = t - frame.t_us;
-      anchored_ = true;
-    }
+    const int64_t device_us = clock_.Micros(timestamp);
+    Stamped<LiveFrame> frame{device_us, {clock_.OnHost(device_us, t), {}}};
     cv::Mat& image = frame.value.data;
     if (is_depth) {
       image = cv::Mat(height_, width_, CV_16UC1, const_cast<void*>(data)).clone();
@@ -207,8 +204,8 @@ void KinectSource::RecordLoop() {
 
 void KinectSource::Deliver(std::vector<StampedPair<LiveFrame>> pairs) {
   for (StampedPair<LiveFrame>& p : pairs) {
-    RawPair item{host_minus_device_us_ + p.color.t_us, host_minus_device_us_ + p.depth.t_us,
-                 std::move(p.color.value.data), p.depth.value.data};
+    RawPair item{p.color.value.host_us, p.depth.value.host_us, std::move(p.color.value.data),
+                 p.depth.value.data};
     {
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_.pairs;

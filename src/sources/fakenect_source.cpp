@@ -79,17 +79,15 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
   by_device_clock_ = false;
   for (const FakenectName& n : parsed)
     if (n.device_ts != parsed.front().device_ts) by_device_clock_ = true;
-  // With the device's clock the frames are also stamped by it, on the host's clock (the first
-  // entry's host time minus its device time), as the live capture stamps them: host arrival
-  // times jitter by tens of milliseconds under load, and differently for the two streams.
+  // With the device's clock the frames are also stamped by it (KinectClock::OnHost), as the
+  // live capture stamps them.
   KinectClock clock;
-  int64_t host_minus_device_us = 0;
   for (size_t i = 0; i < parsed.size(); ++i) {
     const FakenectName& name = parsed[i];
     const int64_t t = by_device_clock_ ? clock.Micros(name.device_ts) : name.wallclock_us;
-    if (i == 0 && by_device_clock_) host_minus_device_us = name.wallclock_us - t;
-    const double seconds =
-        by_device_clock_ ? static_cast<double>(host_minus_device_us + t) * 1e-6 : name.seconds();
+    const double seconds = by_device_clock_
+                               ? static_cast<double>(clock.OnHost(t, name.wallclock_us)) * 1e-6
+                               : name.seconds();
     const Stamped<Entry> e{t, {names[i], seconds}};
     if (name.type == 'r') {
       ++color_frames_;

@@ -84,7 +84,7 @@ class KinectSource : public FrameSource {
 
  private:
   struct LiveFrame {
-    int64_t host_us = 0;  // arrival time (the recording's file names)
+    int64_t host_us = 0;  // the device time on the host's clock (KinectClock::OnHost)
     cv::Mat data;
   };
   struct RawPair {
@@ -116,11 +116,6 @@ class KinectSource : public FrameSource {
   std::unique_ptr<FakenectRecorder> recorder_;
   StreamPairer<LiveFrame> pairer_;
   KinectClock clock_;
-  // The Kinect's clock on the host's: the first frame's arrival time minus its device time.
-  // Arrival times jitter by tens of milliseconds on a busy host, and differently for the two
-  // streams; the device clock does not, so every frame is stamped with anchor + device time.
-  int64_t host_minus_device_us_ = 0;
-  bool anchored_ = false;
   BoundedQueue<RawPair> queue_;
   BoundedQueue<RecordJob> record_queue_;
   std::thread thread_, record_thread_;

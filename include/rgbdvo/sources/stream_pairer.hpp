@@ -34,11 +34,23 @@ class KinectClock {
     last_ = stamp;
     return static_cast<int64_t>(std::llround(static_cast<double>(ticks_) / kTicksPerMicrosecond));
   }
+  // A device time (Micros) on the host's clock: the first call's host time plus the device time
+  // since. Host arrival times jitter by tens of milliseconds on a busy host, differently for
+  // colour and depth; the device clock does not, so frames are stamped with this.
+  int64_t OnHost(int64_t device_us, int64_t host_us) {
+    if (!anchored_) {
+      host_minus_device_us_ = host_us - device_us;
+      anchored_ = true;
+    }
+    return host_minus_device_us_ + device_us;
+  }
 
  private:
   bool started_ = false;
   uint32_t last_ = 0;
   int64_t ticks_ = 0;
+  bool anchored_ = false;
+  int64_t host_minus_device_us_ = 0;
 };
 
 template <class T>
