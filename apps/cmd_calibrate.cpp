@@ -8,6 +8,7 @@
 #include "rgbdvo/calibrate/calibrate.hpp"
 #include "rgbdvo/calibrate/calibration_clicker.hpp"
 #include "rgbdvo/calibrate/pixel_pairs_file.hpp"
+#include "rgbdvo/sensor/calibration_catalog.hpp"
 #include "rgbdvo/sources/frame_cache.hpp"
 #include "rgbdvo/sources/open_source.hpp"
 
@@ -23,8 +24,18 @@ struct CalibrateArgs {
   ClickerOptions clicker;
 };
 
+// The calibration whose all but A-D is kept, and a line saying where K_ir comes from.
 Calibration Base(const CalibrateArgs& a) {
-  return a.calib.empty() ? Calibration{} : LoadCalibration(a.calib);
+  if (a.calib.empty()) {
+    const Calibration paper;
+    std::cout << "# K_ir, depth range: the paper's (fx = fy = " << paper.fx << ", cx = " << paper.cx
+              << ", cy = " << paper.cy << "); give --calib with your camera's for better results"
+              << std::endl;
+    return paper;
+  }
+  const std::string path = FindCalibration(a.calib);
+  std::cout << "# K_ir, distortion, depth range: from " << path << std::endl;
+  return LoadCalibration(path);
 }
 
 int FromFile(const CalibrateArgs& a) {
@@ -107,8 +118,8 @@ void AddCalibrateCommand(CLI::App& app) {
   cmd->add_option("--pairs", args->pairs,
                   "pairs CSV (u_vis,v_vis,u_ir,v_ir): fit from it, or with SOURCE start from it");
   cmd->add_option("--out", args->out, "calibration YAML to write")->required();
-  cmd->add_option("--calib", args->calib,
-                  "base calibration YAML: all but A-D is kept (K_ir, dist_ir, depth range)");
+  AddCalibFlag(cmd, &args->calib,
+               "base calibration YAML, all but A-D kept (K_ir, dist_ir, depth range)");
   cmd->add_option("--save-pairs", args->save_pairs,
                   "where clicked pairs are saved (default: OUT with .pairs.csv)");
   cmd->add_flag("--robust", args->clicker.fit.robust, "set aside pairs with large residuals");

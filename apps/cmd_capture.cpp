@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "rgbdvo/sensor/calibration_catalog.hpp"
 
 #if !RGBDVO_WITH_KINECT
 
@@ -50,7 +51,8 @@ constexpr int kExitDeviceLost = 3;
 
 int Capture(CaptureArgs& a) {
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
-  const Calibration calib = LoadCalibration(a.calib);
+  const std::string calib_path = FindCalibration(a.calib);
+  const Calibration calib = LoadCalibration(calib_path);
   a.kinect.drop_when_behind = !a.no_drop;
   a.kinect.record_accel = !a.no_accel;
   a.kinect.stop = &StopOnSignals::Flag();
@@ -58,7 +60,7 @@ int Capture(CaptureArgs& a) {
   // Read no further ahead than the workers need: a backlog then waits in the source's queue,
   // where the oldest pair is dropped and counted (the newest frame wins).
   a.run.queue_frames = 1;
-  a.outputs.RefuseInputs({a.calib});
+  a.outputs.RefuseInputs({calib_path});
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
   const std::vector<std::unique_ptr<TrajectoryWriter> > writers = a.outputs.Open();
@@ -70,7 +72,7 @@ int Capture(CaptureArgs& a) {
 
   KinectSource source(a.kinect);
   if (!a.quiet) {
-    PrintConfiguration(info, source.Describe(), a.calib, calib, odometry_options, a.run);
+    PrintConfiguration(info, source.Describe(), calib_path, calib, odometry_options, a.run);
     info << "# Ctrl-C (or SIGTERM) stops cleanly" << std::endl;
   }
   LimitOpenCvThreads();
@@ -110,8 +112,7 @@ void AddCaptureCommand(CLI::App& app) {
       "capture", "visual odometry live from a Kinect v1 (libfreenect), optionally recording it");
   cmd->add_option("--device", args->kinect.device, "libfreenect device index")
       ->capture_default_str();
-  cmd->add_option("--calib", args->calib,
-                  "calibration YAML (uncalibrated Kinect: calib/kinect_v1_default.yaml)")
+  AddCalibFlag(cmd, &args->calib, "calibration YAML (uncalibrated Kinect: kinect_v1_default)")
       ->required();
   cmd->add_option("--frames", args->kinect.max_frames, "stop after N frames (0 = until Ctrl-C)")
       ->capture_default_str();

@@ -10,6 +10,7 @@
 #include "rgbdvo/evaluation/plot.hpp"
 #include "rgbdvo/pipeline/run.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/sensor/calibration_catalog.hpp"
 #include "rgbdvo/sources/frame_range.hpp"
 #include "rgbdvo/sources/open_source.hpp"
 #include "run_common.hpp"
@@ -37,7 +38,8 @@ struct PoseRecorder : TrajectoryWriter {
 
 int Run(const RunArgs& a) {
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
-  const Calibration calib = LoadCalibration(a.calib);
+  const std::string calib_path = FindCalibration(a.calib);
+  const Calibration calib = LoadCalibration(calib_path);
   // The depth scale: --depth-scale, else the calibration's, else TUM's 5000.
   SourceOptions source_options = a.source;
   if (!a.depth_scale_given && calib.depth_units_per_m > 0)
@@ -49,7 +51,7 @@ int Run(const RunArgs& a) {
               << " s (first: " << tum->unpaired().front().path << ")\n";
   }
   const auto source = std::make_unique<FrameRangeSource>(std::move(recording), a.range);
-  std::vector<std::string> inputs = {a.calib};
+  std::vector<std::string> inputs = {calib_path};
   for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt",
                            "INDEX.txt", "associations.txt"})
     inputs.push_back((std::filesystem::path(a.folder) / name).string());
@@ -66,7 +68,7 @@ int Run(const RunArgs& a) {
   if (!a.plot.empty()) writer_ptrs.push_back(&recorder);
 
   if (!a.quiet) {
-    PrintConfiguration(info, source->Describe(), a.calib, calib, odometry_options, a.run);
+    PrintConfiguration(info, source->Describe(), calib_path, calib, odometry_options, a.run);
     info << std::flush;
   }
   LimitOpenCvThreads();
@@ -110,7 +112,7 @@ void AddRunCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "run", "visual odometry over a recorded folder (TUM RGB-D or fakenect layout)");
   cmd->add_option("folder", args->folder, "recording folder")->required();
-  cmd->add_option("--calib", args->calib, "calibration YAML (see calib/)")->required();
+  AddCalibFlag(cmd, &args->calib, "calibration YAML")->required();
   args->outputs.AddFlags(cmd);
   cmd->add_option("--depth-scale", args->source.tum.depth_units_per_m,
                   "TUM depth units per metre (default: the calibration's depth_units_per_m, else "

@@ -3,6 +3,7 @@
 // CLI11 and calls one library function; an exception becomes one line on stderr and exit 1.
 
 #include <CLI/CLI.hpp>
+#include <string>
 
 #include "odometry_flags.hpp"
 
@@ -14,5 +15,9 @@ void AddEvalCommand(CLI::App& app);
 void AddPlotCommand(CLI::App& app);
 void AddCaptureCommand(CLI::App& app);
 void AddSynthKinectCommand(CLI::App& app);
+void AddCalibrationsCommand(CLI::App& app);
+
+// --calib: a calibration file or the name of one (FindCalibration gives the file).
+CLI::Option* AddCalibFlag(CLI::App* cmd, std::string* path, const std::string& help);
 
 }  // namespace rgbdvo::cli

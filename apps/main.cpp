@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   rgbdvo::cli::AddPlotCommand(app);
   rgbdvo::cli::AddCaptureCommand(app);
   rgbdvo::cli::AddSynthKinectCommand(app);
+  rgbdvo::cli::AddCalibrationsCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -95,8 +95,21 @@ TEST_CASE("rgbdvo calibrate --pairs writes a calibration that rgbdvo run accepts
                      &out) == 0);
   CHECK_THAT(out, Catch::Contains("A=1 B=0 C=1 D=0 from 6 of 6 pairs, RMS 0 px"));
   CHECK_THAT(out, Catch::Contains("wrote " + dir + "/c.yaml"));
+  CHECK_THAT(out, Catch::Contains("K_ir, distortion, depth range: from " + SourceDir() +
+                                  "/calib/tum_fr1.yaml"));
   const Calibration c = LoadCalibration(dir + "/c.yaml");
   CHECK(c.fx == 517.3);  // from the base calibration
+
+  // Without --calib the paper's K_ir is kept, and said so; a calibration name works as a path.
+  REQUIRE(RunCommand(
+              RgbdvoExe() + " calibrate --pairs " + dir + "/pairs.csv --out " + dir + "/paper.yaml",
+              &out) == 0);
+  CHECK_THAT(out, Catch::Contains("K_ir, depth range: the paper's (fx = fy = 475"));
+  CHECK(LoadCalibration(dir + "/paper.yaml").fx == 475);
+  REQUIRE(RunCommand(RgbdvoExe() + " calibrate --pairs " + dir + "/pairs.csv --out " + dir +
+                         "/named.yaml --calib tum_fr1",
+                     &out) == 0);
+  CHECK(LoadCalibration(dir + "/named.yaml").fx == 517.3);
 
   // A 3-frame copy of the excerpt, run with the new calibration.
   const std::string rec = dir + "/rec", data = SourceDir() + "/data/tum_fr1_xyz_first30";
