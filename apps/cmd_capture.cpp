@@ -50,6 +50,11 @@ struct CaptureArgs {
 constexpr int kExitDeviceLost = 3;
 
 int Capture(CaptureArgs& a) {
+  if (a.odometry_flags->dump_requested()) {
+    std::cout << a.odometry_flags->DumpConfig() << std::flush;
+    return 0;
+  }
+  if (a.calib.empty()) throw CLI::RequiredError("--calib");
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
   const std::string calib_path = FindCalibration(a.calib);
   const Calibration calib = LoadCalibration(calib_path);
@@ -112,8 +117,9 @@ void AddCaptureCommand(CLI::App& app) {
       "capture", "visual odometry live from a Kinect v1 (libfreenect), optionally recording it");
   cmd->add_option("--device", args->kinect.device, "libfreenect device index")
       ->capture_default_str();
-  AddCalibFlag(cmd, &args->calib, "calibration YAML (uncalibrated Kinect: kinect_v1_default)")
-      ->required();
+  // Required unless --dump-config (checked by Capture).
+  AddCalibFlag(cmd, &args->calib,
+               "calibration YAML (required; uncalibrated Kinect: kinect_v1_default)");
   cmd->add_option("--frames", args->kinect.max_frames, "stop after N frames (0 = until Ctrl-C)")
       ->capture_default_str();
   cmd->add_option("--seconds", args->kinect.max_seconds, "stop after S seconds (0 = until Ctrl-C)")

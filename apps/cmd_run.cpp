@@ -37,6 +37,12 @@ struct PoseRecorder : TrajectoryWriter {
 };
 
 int Run(const RunArgs& a) {
+  if (a.odometry_flags->dump_requested()) {
+    std::cout << a.odometry_flags->DumpConfig() << std::flush;
+    return 0;
+  }
+  if (a.folder.empty()) throw CLI::RequiredError("folder");
+  if (a.calib.empty()) throw CLI::RequiredError("--calib");
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
   const std::string calib_path = FindCalibration(a.calib);
   const Calibration calib = LoadCalibration(calib_path);
@@ -111,8 +117,9 @@ void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
       "run", "visual odometry over a recorded folder (TUM RGB-D or fakenect layout)");
-  cmd->add_option("folder", args->folder, "recording folder")->required();
-  AddCalibFlag(cmd, &args->calib, "calibration YAML")->required();
+  // Required unless --dump-config (checked by Run).
+  cmd->add_option("folder", args->folder, "recording folder (required)");
+  AddCalibFlag(cmd, &args->calib, "calibration YAML (required)");
   args->outputs.AddFlags(cmd);
   cmd->add_option("--depth-scale", args->source.tum.depth_units_per_m,
                   "TUM depth units per metre (default: the calibration's depth_units_per_m, else "

@@ -1,9 +1,11 @@
 #pragma once
-// The odometry flags shared by `run` and `capture`: a --preset and one flag per parameter.
-// Flags given on the command line override the preset's values.
+// The odometry flags shared by `run` and `capture`, made from the one list of parameters
+// (odometry/odometry_parameters.hpp): --preset, --config FILE, --dump-config, and a flag per
+// parameter (--NAME VALUE; booleans --NAME / --no-NAME). Applied in that order: the preset,
+// then the file, then the flags given on the command line.
 
 #include <CLI/CLI.hpp>
-#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,19 +16,24 @@ namespace rgbdvo::cli {
 class OdometryFlags {
  public:
   explicit OdometryFlags(CLI::App* cmd);
-  // The preset's options with every flag the user gave applied on top; checked.
+  // The preset's options, the configuration file's values and every flag the user gave on top;
+  // checked.
   OdometryOptions Resolve() const;
+  // --dump-config was given: the command prints DumpConfig() and exits.
+  bool dump_requested() const { return dump_; }
+  // Resolve() as a configuration file (what --config reads), with a header naming its sources.
+  std::string DumpConfig() const;
 
  private:
-  template <typename T>
-  void Add(const std::string& name, T& (*field)(OdometryOptions&), const std::string& help);
-  void AddSwitch(const std::string& name, bool& (*field)(OdometryOptions&), bool value,
-                 const std::string& help);
-
-  CLI::App* cmd_;
+  struct Given {
+    std::string text;            // the value of --NAME VALUE
+    CLI::Option* on = nullptr;   // --NAME (a value option, or a boolean's positive form)
+    CLI::Option* off = nullptr;  // --no-NAME (booleans)
+  };
   std::string preset_ = "default";
-  OdometryOptions given_;
-  std::vector<std::function<void(OdometryOptions&)>> apply_given_;
+  std::string config_;
+  bool dump_ = false;
+  std::vector<std::unique_ptr<Given>> given_;  // one per OdometryParameters() entry
 };
 
 }  // namespace rgbdvo::cli

@@ -7,6 +7,7 @@
 
 #include "rgbdvo/estimation/depth_term.hpp"
 #include "rgbdvo/geometry/motion_prior.hpp"
+#include "rgbdvo/odometry/odometry_parameters.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
 #include "rgbdvo/util/stopwatch.hpp"
 
@@ -50,40 +51,10 @@ OdometryOptions PresetOptions(const std::string& name) {
 }
 
 std::string OdometryOptions::ToString() const {
-  std::ostringstream s;
-  s << "features.implementation = " << features.implementation << "\n"
-    << "features.max_features = " << features.max_features << "\n"
-    << "features.octave_layers = " << features.octave_layers << "\n"
-    << "features.contrast_threshold = " << features.contrast_threshold << "\n"
-    << "features.edge_threshold = " << features.edge_threshold << "\n"
-    << "features.sigma = " << features.sigma << "\n"
-    << "features.upsample_first_octave = " << (features.upsample_first_octave ? "true" : "false")
-    << "\n"
-    << "matching.ratio = " << matching.ratio << "\n"
-    << "matching.mutual = " << (matching.mutual ? "true" : "false") << "\n"
-    << "matching.guided_radius_px = " << guided_radius_px << "\n"
-    << "lifting.max_depth_jump_ratio = " << lifting.max_depth_jump_ratio << "\n"
-    << "ransac.max_trials = " << ransac.max_trials << "\n"
-    << "ransac.sample_size = " << ransac.sample_size << "\n"
-    << "ransac.inlier_distance_m = " << ransac.inlier_distance_m << "\n"
-    << "ransac.confidence = " << ransac.confidence << "\n"
-    << "verify.min_inliers = " << verify.min_inliers << "\n"
-    << "verify.max_translation_m = " << verify.max_translation_m << "\n"
-    << "verify.max_rotation_deg = " << verify.max_rotation_deg << "\n"
-    << "refine.enabled = " << (refine_enabled ? "true" : "false") << "\n"
-    << "refine.pixel_sigma = " << refine.pixel_sigma << "\n"
-    << "refine.depth_noise_coeff = " << refine.depth_noise_coeff << "\n"
-    << "refine.huber_sigmas = " << refine.huber_sigmas << "\n"
-    << "refine.inlier_sigmas = " << refine.inlier_sigmas << "\n"
-    << "keyframe_inlier_ratio = " << keyframe_inlier_ratio << "\n"
-    << "compensate_depth_delay = " << (compensate_depth_delay ? "true" : "false") << "\n"
-    << "undistort = " << (undistort ? "true" : "false") << "\n"
-    << "max_rejected_run = " << max_rejected_run << "\n"
-    << "depth_fallback = " << (depth_fallback ? "true" : "false") << "\n"
-    << "depth_term_step = " << depth_term_step << "\n"
-    << "predict_failed_frames = " << (predict_failed_frames ? "true" : "false") << "\n"
-    << "seed = " << seed << "\n";
-  return s.str();
+  std::string s;
+  for (const OdometryParameter& p : OdometryParameters())
+    s += std::string(p.key) + " = " + p.Get(*this) + "\n";
+  return s;
 }
 
 bool HasFeatureEstimate(FrameStatus status) {

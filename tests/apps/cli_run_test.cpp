@@ -359,3 +359,51 @@ TEST_CASE("rgbdvo run takes the depth scale from the calibration unless --depth-
   out = Run(dir + " --calib " + SyntheticCalib(dir) + " --max-frames 1", &code);  // not given
   CHECK_THAT(out, Catch::Contains("depth 5000 units per metre"));
 }
+
+TEST_CASE("rgbdvo run --dump-config prints what --config reads, after preset, file and flags") {
+  const std::string dir = MakeTempDir("cli_config");
+  std::string out;
+  REQUIRE(RunCommand(RgbdvoExe() + " run --dump-config --preset paper", &out) == 0);
+  CHECK_THAT(out, Catch::Contains("matching.mutual = false") &&
+                      Catch::Contains("ransac.max_trials = 200") &&
+                      Catch::Contains("refine.max_iterations = 10"));
+  std::ofstream(dir + "/paper.cfg") << out;
+
+  // The file, then the flags on top of it; a boolean flag's --no- form.
+  std::ofstream(dir + "/trials.cfg") << "ransac.max_trials = 50\nmatching.ratio = 0.7\n";
+  REQUIRE(RunCommand(RgbdvoExe() + " run --dump-config --config " + dir +
+                         "/trials.cfg --trials 70 --no-mutual --no-sift-upsample",
+                     &out) == 0);
+  CHECK_THAT(out, Catch::Contains("ransac.max_trials = 70") &&
+                      Catch::Contains("matching.ratio = 0.7") &&
+                      Catch::Contains("matching.mutual = false") &&
+                      Catch::Contains("features.upsample_first_octave = false"));
+
+  // The dumped paper configuration runs exactly as --preset paper.
+  const std::string data = SourceDir() + "/data/tum_fr1_xyz_first30",
+                    calib = SourceDir() + "/calib/tum_fr1.yaml";
+  REQUIRE(RunCommand(RgbdvoExe() + " run " + data + " --calib " + calib +
+                         " --max-frames 6 --quiet --preset paper --tum " + dir + "/preset.tum",
+                     &out) == 0);
+  REQUIRE(RunCommand(RgbdvoExe() + " run " + data + " --calib " + calib +
+                         " --max-frames 6 --quiet --config " + dir + "/paper.cfg --tum " + dir +
+                         "/config.tum",
+                     &out) == 0);
+  CHECK(Slurp(dir + "/preset.tum") == Slurp(dir + "/config.tum"));
+  const std::vector<std::string> rows = Lines(dir + "/config.tum");
+  CHECK(std::count_if(rows.begin(), rows.end(),
+                      [](const std::string& row) { return !row.empty() && row[0] != '#'; }) == 6);
+}
+
+TEST_CASE("rgbdvo run: bad flag values are usage errors, bad configuration files input errors") {
+  const std::string dir = MakeTempDir("cli_config");
+  std::string out;
+  CHECK(RunCommand(RgbdvoExe() + " run --dump-config --ratio abc", &out) == 2);
+  CHECK_THAT(out, Catch::Contains("matching.ratio"));
+  CHECK(RunCommand(RgbdvoExe() + " run --dump-config --mutual --no-mutual", &out) == 2);
+  CHECK(RunCommand(RgbdvoExe() + " run --calib tum_fr1", &out) == 2);  // no folder
+  CHECK_THAT(out, Catch::Contains("folder"));
+  std::ofstream(dir + "/bad.cfg") << "ransac.max_trials = 50\nransac.trails = 5\n";
+  CHECK(RunCommand(RgbdvoExe() + " run --dump-config --config " + dir + "/bad.cfg", &out) == 1);
+  CHECK_THAT(out, Catch::Contains(dir + "/bad.cfg:2") && Catch::Contains("ransac.trails"));
+}

@@ -1,0 +1,211 @@
+#include "rgbdvo/odometry/odometry_parameters.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "rgbdvo/io/text.hpp"
+
+namespace rgbdvo {
+namespace {
+
+using O = OdometryOptions;
+
+// The list itself. A new parameter: a field in its options struct, then one line here.
+const std::vector<OdometryParameter> kParameters = {
+    {"features.implementation", "sift",
+     "SIFT implementation: rgbdvo (own, faster) or opencv (cv::SIFT)",
+     [](O& o) -> ParameterRef { return &o.features.implementation; }},
+    {"features.max_features", "max-features", "SIFT: keep the N strongest, 0 = all",
+     [](O& o) -> ParameterRef { return &o.features.max_features; }},
+    {"features.octave_layers", "octave-layers", "SIFT scales per octave",
+     [](O& o) -> ParameterRef { return &o.features.octave_layers; }},
+    {"features.contrast_threshold", "contrast-threshold", "SIFT DoG contrast threshold",
+     [](O& o) -> ParameterRef { return &o.features.contrast_threshold; }},
+    {"features.edge_threshold", "edge-threshold", "SIFT edge response ratio (Lowe: 10)",
+     [](O& o) -> ParameterRef { return &o.features.edge_threshold; }},
+    {"features.sigma", "sift-sigma", "SIFT base blur (Lowe: 1.6)",
+     [](O& o) -> ParameterRef { return &o.features.sigma; }},
+    {"features.upsample_first_octave", "sift-upsample",
+     "SIFT from a 2x-upsampled first octave (Lowe, OpenCV); --no-sift-upsample: from the image's "
+     "own resolution, about 3x less CPU",
+     [](O& o) -> ParameterRef { return &o.features.upsample_first_octave; }},
+    {"matching.ratio", "ratio", "Lowe ratio test: best < ratio * second best",
+     [](O& o) -> ParameterRef { return &o.matching.ratio; }},
+    {"matching.mutual", "mutual", "require mutual nearest neighbours (not in --preset paper)",
+     [](O& o) -> ParameterRef { return &o.matching.mutual; }},
+    {"matching.guided_radius_px", "guided-radius",
+     "guided matching: search radius around the motion prior's prediction, px (0 = brute force)",
+     [](O& o) -> ParameterRef { return &o.guided_radius_px; }},
+    {"lifting.max_depth_jump_ratio", "depth-jump",
+     "bilinear depth, refused across jumps above this fraction (0 = nearest pixel)",
+     [](O& o) -> ParameterRef { return &o.lifting.max_depth_jump_ratio; }},
+    {"ransac.max_trials", "trials", "RANSAC hypotheses (paper: 200)",
+     [](O& o) -> ParameterRef { return &o.ransac.max_trials; }},
+    {"ransac.sample_size", "sample-size", "matches per RANSAC hypothesis (paper: 4)",
+     [](O& o) -> ParameterRef { return &o.ransac.sample_size; }},
+    {"ransac.inlier_distance_m", "inlier-dist", "RANSAC inlier 3D distance, m (paper: 0.015)",
+     [](O& o) -> ParameterRef { return &o.ransac.inlier_distance_m; }},
+    {"ransac.confidence", "ransac-confidence",
+     "stop RANSAC early at this confidence (0 = always --trials, the paper)",
+     [](O& o) -> ParameterRef { return &o.ransac.confidence; }},
+    {"verify.min_inliers", "min-inliers", "reject a frame with fewer inliers (paper: 15)",
+     [](O& o) -> ParameterRef { return &o.verify.min_inliers; }},
+    {"verify.max_translation_m", "max-translation",
+     "reject a larger motion per frame, m (paper: 0.5)",
+     [](O& o) -> ParameterRef { return &o.verify.max_translation_m; }},
+    {"verify.max_rotation_deg", "max-rotation",
+     "reject a larger rotation per frame, deg (paper: 60)",
+     [](O& o) -> ParameterRef { return &o.verify.max_rotation_deg; }},
+    {"refine.enabled", "refine",
+     "refine the motion on reprojection and depth residuals (--no-refine: the paper's SVD only)",
+     [](O& o) -> ParameterRef { return &o.refine_enabled; }},
+    {"refine.pixel_sigma", "pixel-sigma", "refinement: keypoint noise, px",
+     [](O& o) -> ParameterRef { return &o.refine.pixel_sigma; }},
+    {"refine.depth_noise_coeff", "depth-noise",
+     "refinement: depth noise sigma_z = c*z^2, c in 1/m (Khoshelham & Elberink 2012)",
+     [](O& o) -> ParameterRef { return &o.refine.depth_noise_coeff; }},
+    {"refine.huber_sigmas", "huber-sigmas", "refinement: Huber threshold, sigmas",
+     [](O& o) -> ParameterRef { return &o.refine.huber_sigmas; }},
+    {"refine.inlier_sigmas", "inlier-sigmas", "refinement: inlier below this whitened error",
+     [](O& o) -> ParameterRef { return &o.refine.inlier_sigmas; }},
+    {"refine.max_iterations", "refine-iterations", "refinement: Levenberg-Marquardt iterations",
+     [](O& o) -> ParameterRef { return &o.refine.max_iterations; }},
+    {"keyframe_inlier_ratio", "keyframe-ratio",
+     "new keyframe when inliers < ratio * the keyframe's first inliers (0 = every frame)",
+     [](O& o) -> ParameterRef { return &o.keyframe_inlier_ratio; }},
+    {"compensate_depth_delay", "depth-delay",
+     "lift keypoints where the depth image saw them, moved over the colour-depth time offset "
+     "(--no-depth-delay: at the keypoint's own pixel, the paper)",
+     [](O& o) -> ParameterRef { return &o.compensate_depth_delay; }},
+    {"undistort", "undistort",
+     "use the calibration's lens distortion (--no-undistort: the paper's pinhole model)",
+     [](O& o) -> ParameterRef { return &o.undistort; }},
+    {"max_rejected_run", "max-rejected-run",
+     "after N rejected frames in a row restart from the current frame (0 = never)",
+     [](O& o) -> ParameterRef { return &o.max_rejected_run; }},
+    {"depth_fallback", "depth-fallback",
+     "when features fail, align the depth images by ICP (--no-depth-fallback: report the "
+     "prediction)",
+     [](O& o) -> ParameterRef { return &o.depth_fallback; }},
+    {"depth_term_step", "depth-term-step",
+     "also align the depth surfaces at every N-th pixel in the refinement (e.g. 16; 0 = features "
+     "only)",
+     [](O& o) -> ParameterRef { return &o.depth_term_step; }},
+    {"predict_failed_frames", "predict",
+     "report a frame without an estimate at the constant-velocity prediction (--no-predict: at "
+     "the last pose, the paper)",
+     [](O& o) -> ParameterRef { return &o.predict_failed_frames; }},
+    {"seed", "seed", "RANSAC random seed", [](O& o) -> ParameterRef { return &o.seed; }},
+};
+
+std::string Lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+}  // namespace
+
+bool OdometryParameter::IsBool() const {
+  O o;
+  return std::holds_alternative<bool*>(field(o));
+}
+
+std::string OdometryParameter::Get(const OdometryOptions& options) const {
+  O copy = options;
+  std::ostringstream s;
+  s.precision(15);
+  std::visit(
+      [&](auto* value) {
+        if constexpr (std::is_same_v<decltype(value), bool*>)
+          s << (*value ? "true" : "false");
+        else
+          s << *value;
+      },
+      field(copy));
+  return s.str();
+}
+
+void OdometryParameter::Set(const std::string& text, OdometryOptions* options) const {
+  const std::string value = Trim(text);
+  const auto bad = [&](const std::string& what) {
+    return std::invalid_argument(std::string(key) + ": '" + value + "' is not " + what);
+  };
+  std::visit(
+      [&](auto* target) {
+        using T = std::remove_pointer_t<decltype(target)>;
+        if constexpr (std::is_same_v<T, std::string>) {
+          if (value.empty()) throw bad("a name");
+          *target = value;
+        } else if constexpr (std::is_same_v<T, bool>) {
+          const std::string v = Lower(value);
+          if (v == "true" || v == "1" || v == "yes" || v == "on")
+            *target = true;
+          else if (v == "false" || v == "0" || v == "no" || v == "off")
+            *target = false;
+          else
+            throw bad("true or false");
+        } else {
+          double number;
+          try {
+            number = ParseNumber(value, key);
+          } catch (const std::runtime_error&) {
+            throw bad("a number");
+          }
+          if constexpr (std::is_same_v<T, double>) {
+            *target = number;
+          } else {
+            if (number != std::floor(number) || number < std::numeric_limits<T>::min() ||
+                number > std::numeric_limits<T>::max())
+              throw bad(std::is_same_v<T, int> ? "an integer" : "a non-negative integer");
+            *target = static_cast<T>(number);
+          }
+        }
+      },
+      field(*options));
+}
+
+const std::vector<OdometryParameter>& OdometryParameters() { return kParameters; }
+
+const OdometryParameter* FindParameter(const std::string& key) {
+  for (const OdometryParameter& p : kParameters)
+    if (key == p.key) return &p;
+  return nullptr;
+}
+
+void ApplyConfig(std::istream& in, const std::string& name, OdometryOptions* options) {
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    const std::string where = name + ":" + std::to_string(number);
+    const std::string content = Trim(line.substr(0, line.find('#')));
+    if (content.empty()) continue;
+    const size_t eq = content.find('=');
+    if (eq == std::string::npos)
+      throw std::runtime_error(where + ": expected 'key = value', got '" + content + "'");
+    const std::string key = Trim(content.substr(0, eq));
+    const OdometryParameter* p = FindParameter(key);
+    if (!p)
+      throw std::runtime_error(where + ": unknown parameter '" + key +
+                               "' (`rgbdvo run --dump-config` lists them)");
+    try {
+      p->Set(content.substr(eq + 1), options);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(where + ": " + e.what());
+    }
+  }
+  if (in.bad()) throw std::runtime_error(name + ": read error");
+}
+
+void ApplyConfigFile(const std::string& path, OdometryOptions* options) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the configuration file");
+  ApplyConfig(in, path, options);
+}
+
+}  // namespace rgbdvo
