@@ -65,7 +65,7 @@ int Run(const RunArgs& a) {
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
   if (a.outputs.csv.empty() && a.outputs.tum.empty() && a.outputs.kitti.empty() && a.plot.empty())
-    std::cerr << "rgbdvo: warning: no --out, --tum, --kitti or --plot: the trajectory is computed "
+    std::cerr << "rgbdvo: warning: no --csv, --tum, --kitti or --plot: the trajectory is computed "
                  "but not written\n";
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;

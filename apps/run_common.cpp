@@ -15,7 +15,13 @@
 namespace rgbdvo::cli {
 
 void TrajectoryOutputs::AddFlags(CLI::App* cmd) {
-  cmd->add_option("--out", csv, "trajectory CSV, written frame by frame (- = standard output)");
+  cmd->add_option("--csv", csv,
+                  "trajectory CSV with each frame's status, written frame by frame (- = standard "
+                  "output)");
+  // The old name of --csv (ambiguous beside --tum and --kitti): still accepted, with a warning.
+  cmd->add_option("--out", csv, "deprecated: --csv")->group("")->each([](const std::string&) {
+    std::cerr << "rgbdvo: warning: --out is deprecated and will be removed; use --csv" << std::endl;
+  });
   cmd->add_option("--tum", tum,
                   "trajectory in TUM format (timestamp tx ty tz qx qy qz qw; - = standard output)");
   cmd->add_option("--kitti", kitti,
@@ -48,7 +54,7 @@ void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) con
     }
   }
   const std::pair<const std::string*, const char*> outputs[] = {
-      {&csv, "--out"}, {&tum, "--tum"}, {&kitti, "--kitti"}};
+      {&csv, "--csv"}, {&tum, "--tum"}, {&kitti, "--kitti"}};
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = i + 1; j < 3; ++j)
       if (!outputs[i].first->empty() && !outputs[j].first->empty() &&

@@ -92,7 +92,7 @@ TEST_CASE("rgbdvo capture under fakenect: every frame, the true path, a faithful
   const std::string dir = MakeTempDir("capture");
   std::string out;
   const int code = Capture(
-      rec, "--no-drop --record " + dir + "/out --out " + dir + "/t.csv --tum " + dir + "/t.txt",
+      rec, "--no-drop --record " + dir + "/out --csv " + dir + "/t.csv --tum " + dir + "/t.txt",
       &out);
   INFO(out);
   // End of the recording is a clean stop.
@@ -154,7 +154,7 @@ TEST_CASE("rgbdvo capture --frames N stops after N frames and records exactly th
   const std::string rec = Recording();
   const std::string dir = MakeTempDir("capture_n");
   std::string out;
-  REQUIRE(Capture(rec, "--no-drop --frames 4 --record " + dir + "/out --out " + dir + "/t.csv",
+  REQUIRE(Capture(rec, "--no-drop --frames 4 --record " + dir + "/out --csv " + dir + "/t.csv",
                   &out) == 0);
   INFO(out);
   CHECK_THAT(out, Catch::Contains("4 frames") && Catch::Contains("stopped: 4 frames"));
@@ -171,7 +171,7 @@ TEST_CASE("rgbdvo capture drops frames when behind, counts them, and still recor
   const std::string rec = Recording();
   const std::string dir = MakeTempDir("capture_drop");
   std::string out;
-  REQUIRE(Capture(rec, "--queue 1 --record " + dir + "/out --out " + dir + "/t.csv", &out) == 0);
+  REQUIRE(Capture(rec, "--queue 1 --record " + dir + "/out --csv " + dir + "/t.csv", &out) == 0);
   INFO(out);
   const int pairs = Number(out, "pairs");
   const int processed = Number(out, "processed");
@@ -238,7 +238,7 @@ TEST_CASE("rgbdvo capture stops cleanly on Ctrl-C with its outputs complete") {
       "-n 1); "
       "FAKENECT_PATH=" +
       rec + " LD_LIBRARY_PATH=$lib " + RgbdvoExe() + " capture --calib " + rec +
-      "/calib.yaml --no-drop --record " + dir + "/out --out " + dir + "/t.csv --tum " + dir +
+      "/calib.yaml --no-drop --record " + dir + "/out --csv " + dir + "/t.csv --tum " + dir +
       "/t.txt & pid=$!; "
       "for i in $(seq 600); do [ \"$(wc -l < " +
       dir +
@@ -272,7 +272,7 @@ TEST_CASE("rgbdvo capture without a Kinect is a clear error") {
   const std::string dir = MakeTempDir("nodevice");
   std::string out;
   const int code = RunCommand("env -u FAKENECT_PATH " + RgbdvoExe() + " capture --calib " +
-                                  SourceDir() + "/calib/kinect_v1_default.yaml --frames 1 --out " +
+                                  SourceDir() + "/calib/kinect_v1_default.yaml --frames 1 --csv " +
                                   dir + "/t.csv --record " + dir + "/rec",
                               &out);
   INFO(out);
@@ -301,7 +301,7 @@ TEST_CASE("rgbdvo run on a fakenect folder: truncated depth stops the run, rows 
   fs::resize_file(rec + "/" + names[8], 100);  // depth of frame 2 (r a d per frame)
   std::string out;
   const int code = RunCommand(RgbdvoExe() + " run " + rec + " --calib " + rec +
-                                  "/calib.yaml --min-inliers 5 --out " + rec + "/t.csv",
+                                  "/calib.yaml --min-inliers 5 --csv " + rec + "/t.csv",
                               &out);
   INFO(out);
   CHECK(code == 1);
@@ -318,7 +318,7 @@ TEST_CASE("rgbdvo capture killed with SIGKILL leaves a recording that lists only
       "-n 1); "
       "FAKENECT_PATH=" +
       rec + " LD_LIBRARY_PATH=$lib " + RgbdvoExe() + " capture --calib " + rec +
-      "/calib.yaml --no-drop --debug-frame-delay-ms 200 --record " + dir + "/out --out " + dir +
+      "/calib.yaml --no-drop --debug-frame-delay-ms 200 --record " + dir + "/out --csv " + dir +
       "/t.csv & pid=$!; "
       "for i in $(seq 600); do [ \"$(cat " +
       dir +

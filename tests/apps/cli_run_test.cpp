@@ -61,7 +61,7 @@ TEST_CASE("rgbdvo run on the real fr1/xyz excerpt follows the ground truth") {
   const std::string dir = MakeTempDir("real");
   const std::string data = SourceDir() + "/data/tum_fr1_xyz_first30";
   int code = 0;
-  const std::string out = Run(data + " --calib " + SourceDir() + "/calib/tum_fr1.yaml --out " +
+  const std::string out = Run(data + " --calib " + SourceDir() + "/calib/tum_fr1.yaml --csv " +
                                   dir + "/t.csv --tum " + dir + "/t.txt",
                               &code);
   INFO(out);
@@ -137,7 +137,7 @@ TEST_CASE("rgbdvo run: a truncated image stops the run but keeps the rows writte
   fs::resize_file(dir + "/rgb/000003.png", 100);
   const std::string csv = dir + "/t.csv";
   int code = 0;
-  const std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --out " + csv, &code);
+  const std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --csv " + csv, &code);
   INFO(out);
   CHECK(code == 1);
   CHECK_THAT(out, Catch::Contains("rgb/000003.png"));
@@ -193,7 +193,7 @@ TEST_CASE(
     // 300 ms per frame (hidden test flag): the signal comes while the run is in its middle.
     const std::string script =
         RgbdvoExe() + " run " + SourceDir() + "/data/tum_fr1_desk_turn24 --calib " + SourceDir() +
-        "/calib/tum_fr1.yaml --quiet --debug-frame-delay-ms 300 --out " + dir + "/t.csv --tum " +
+        "/calib/tum_fr1.yaml --quiet --debug-frame-delay-ms 300 --csv " + dir + "/t.csv --tum " +
         dir + "/t.txt & pid=$!; " + "for i in $(seq 600); do [ \"$(cat " + dir +
         "/t.csv 2>/dev/null | wc -l)\" -ge 4 ] && break; sleep 0.1; "
         "done; kill -" +
@@ -229,14 +229,14 @@ TEST_CASE("rgbdvo run refuses to write its trajectory over one of its inputs") {
   CHECK(code == 1);
   CHECK_THAT(out, Catch::Contains("groundtruth.txt: is an input of this run"));
   CHECK(Slurp(dir + "/groundtruth.txt") == groundtruth_before);
-  out = Run(dir + " --calib " + SyntheticCalib(dir) + " --out " + SyntheticCalib(dir), &code);
+  out = Run(dir + " --calib " + SyntheticCalib(dir) + " --csv " + SyntheticCalib(dir), &code);
   CHECK(code == 1);
   CHECK_THAT(out, Catch::Contains("is an input of this run"));
-  out = Run(dir + " --calib " + SyntheticCalib(dir) + " --out " + dir + "/a.txt --tum " + dir +
+  out = Run(dir + " --calib " + SyntheticCalib(dir) + " --csv " + dir + "/a.txt --tum " + dir +
                 "/./a.txt",
             &code);
   CHECK(code == 1);
-  CHECK_THAT(out, Catch::Contains("given for both --out and --tum"));
+  CHECK_THAT(out, Catch::Contains("given for both --csv and --tum"));
 }
 
 TEST_CASE("rgbdvo run: a full disk is detected on the first write, naming the file") {
@@ -244,7 +244,7 @@ TEST_CASE("rgbdvo run: a full disk is detected on the first write, naming the fi
     WARN("no /dev/full here: the full-disk test does not apply");
     return;
   }
-  for (const std::string flag : {"--tum", "--out"}) {
+  for (const std::string flag : {"--tum", "--csv"}) {
     int code = 0;
     const std::string out = Run(SourceDir() + "/data/tum_fr1_desk_turn24 --calib " + SourceDir() +
                                     "/calib/tum_fr1.yaml --quiet " + flag + " /dev/full",
@@ -278,7 +278,7 @@ TEST_CASE("rgbdvo run --start/--max-frames runs a part, keeping the recording's 
   fs::remove(dir + "/rgb/000001.png");
   int code = 0;
   std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --start 2 --max-frames 3 " +
-                            "--out " + dir + "/t.csv --quiet",
+                            "--csv " + dir + "/t.csv --quiet",
                         &code);
   INFO(out);
   REQUIRE(code == 0);
@@ -406,4 +406,16 @@ TEST_CASE("rgbdvo run: bad flag values are usage errors, bad configuration files
   std::ofstream(dir + "/bad.cfg") << "ransac.max_trials = 50\nransac.trails = 5\n";
   CHECK(RunCommand(RgbdvoExe() + " run --dump-config --config " + dir + "/bad.cfg", &out) == 1);
   CHECK_THAT(out, Catch::Contains(dir + "/bad.cfg:2") && Catch::Contains("ransac.trails"));
+}
+
+TEST_CASE(
+    "rgbdvo run --out, the old name of --csv, still writes the CSV and says it is deprecated") {
+  const std::string dir = MakeTempDir("cli_out");
+  std::string out;
+  REQUIRE(RunCommand(RgbdvoExe() + " run " + SourceDir() + "/data/tum_fr1_xyz_first30 --calib " +
+                         SourceDir() + "/calib/tum_fr1.yaml --max-frames 3 --quiet --out " + dir +
+                         "/old.csv --tum " + dir + "/t.txt",
+                     &out) == 0);
+  CHECK_THAT(out, Catch::Contains("--out is deprecated") && Catch::Contains("--csv"));
+  CHECK(Lines(dir + "/old.csv").size() == 4);  // header + 3 frames
 }

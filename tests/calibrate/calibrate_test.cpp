@@ -125,7 +125,7 @@ TEST_CASE("rgbdvo calibrate --pairs writes a calibration that rgbdvo run accepts
       o << line << "\n", ++kept;
     }
   }
-  REQUIRE(RunCommand(RgbdvoExe() + " run " + rec + " --calib " + dir + "/c.yaml --out " + dir +
+  REQUIRE(RunCommand(RgbdvoExe() + " run " + rec + " --calib " + dir + "/c.yaml --csv " + dir +
                          "/t.csv --quiet",
                      &out) == 0);
   CHECK_THAT(out, Catch::Contains("3 frames"));
