@@ -107,16 +107,19 @@ std::string PlotResult::Brief() const {
   s << "wrote " << png_path << ": estimate " << estimate_poses << " poses";
   if (groundtruth_poses == 0) return s.str() + ", no ground truth";
   if (!aligned) return s.str() + ", ground truth not drawn (" + ate.reason + ")";
-  s << ", ground truth aligned on " << ate.matched << " poses (ATE rmse " << std::fixed
-    << std::setprecision(4) << ate.error_m.rmse << " m)";
+  s << ", " << ate.matched << " poses matched with ground truth, rigidly aligned (ATE rmse "
+    << std::fixed << std::setprecision(4) << ate.error_m.rmse << " m)";
   return s.str();
 }
 
-PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
+PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate_poses,
                           const std::vector<StampedPose>& groundtruth, const std::string& png_path,
                           const PlotOptions& options) {
   options.Check();
-  if (estimate.empty()) throw std::runtime_error("plot: the estimate has no poses");
+  if (estimate_poses.empty()) throw std::runtime_error("plot: the estimate has no poses");
+  // Counted and matched as the same poses written to a file and read back (`rgbdvo eval`).
+  std::vector<StampedPose> estimate = estimate_poses;
+  KeepLastOfEachTime(&estimate);
   PlotResult result;
   result.png_path = png_path;
   result.estimate_poses = static_cast<int>(estimate.size());
@@ -146,8 +149,9 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
   std::string subtitle = "estimate: " + std::to_string(est.size()) + " poses";
   if (result.aligned) {
     std::ostringstream s;
-    s << std::fixed << std::setprecision(3) << "   ground truth: rigidly aligned on "
-      << result.ate.matched << " poses, ATE RMSE " << result.ate.error_m.rmse << " m";
+    s << std::fixed << std::setprecision(3) << "   " << result.ate.matched
+      << " poses matched with ground truth, rigidly aligned, ATE RMSE " << result.ate.error_m.rmse
+      << " m";
     subtitle += s.str();
   } else if (!groundtruth.empty()) {
     subtitle += "   ground truth not drawn: " + result.ate.reason;

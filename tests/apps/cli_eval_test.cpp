@@ -95,7 +95,7 @@ TEST_CASE("rgbdvo plot and rgbdvo run --plot write PNG figures") {
       "run " + dir + " --calib " + dir + "/calib.yaml --quiet --plot " + dir + "/run.png", &code);
   INFO(out);
   REQUIRE(code == 0);
-  CHECK_THAT(out, Catch::Contains("ground truth aligned on 5 poses"));
+  CHECK_THAT(out, Catch::Contains("estimate 5 poses, 5 poses matched with ground truth"));
   CHECK(fs::file_size(dir + "/run.png") > 20000);
 
   out = Rgbdvo(
