@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "rgbdvo/evaluation/evaluation.hpp"
+#include "rgbdvo/evaluation/evaluation_plots.hpp"
 
 namespace rgbdvo::cli {
 
@@ -15,6 +16,8 @@ void AddEvalCommand(CLI::App& app) {
     EvaluationOptions options;
     std::string align = "se3", delta_unit = "s";
     bool json = false;
+    EvaluationFigures figures;
+    EvaluationPlotOptions plot;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -48,6 +51,13 @@ void AddEvalCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--json", args->json,
                 "print JSON instead of the table: one object, an array for several estimates");
+  cmd->add_option("--plot", args->figures.trajectories,
+                  "PNG: top and side view of the ground truth and every aligned estimate");
+  cmd->add_option("--plot-errors", args->figures.errors,
+                  "PNG: ATE of every matched pose over time, a line per estimate");
+  cmd->add_option("--plot-xyz", args->figures.poses,
+                  "PNG: x, y, z, roll, pitch, yaw over time, ground truth and aligned estimates");
+  cmd->add_option("--title", args->plot.title, "title of the figures (default: evaluation)");
   cmd->callback([args] {
     EvaluationOptions options = args->options;
     options.align = ParseAlignment(args->align);
@@ -59,6 +69,8 @@ void AddEvalCommand(CLI::App& app) {
       std::cout << (args->json ? reports[0].Json() : reports[0].Table());
     else
       std::cout << (args->json ? ComparisonJson(reports) : ComparisonTable(reports));
+    // The figures after the table, on stderr with --json so that stdout stays one document.
+    (args->json ? std::cerr : std::cout) << PlotEvaluation(reports, args->figures, args->plot);
     std::cout << std::flush;
   });
 }

@@ -105,3 +105,25 @@ TEST_CASE("rgbdvo plot and rgbdvo run --plot write PNG figures") {
   CHECK_THAT(out, Catch::Contains("ATE rmse 0.0000 m"));
   CHECK(fs::file_size(dir + "/gt.png") > 20000);
 }
+
+TEST_CASE("rgbdvo eval --plot, --plot-errors and --plot-xyz write PNG figures") {
+  const std::string dir = MakeTempDir("cli_eval_plot");
+  const std::string gt = SourceDir() + "/data/tum_fr1_xyz_first30/groundtruth.txt";
+  int code = 0;
+  std::string out =
+      Rgbdvo("eval " + gt + " " + gt + " " + gt + " --plot " + dir + "/t.png --plot-errors " + dir +
+                 "/e.png --plot-xyz " + dir + "/p.png --json",
+             &code);
+  INFO(out);
+  REQUIRE(code == 0);
+  CHECK_THAT(out, Catch::Contains("wrote " + dir + "/t.png") &&
+                      Catch::Contains("wrote " + dir + "/p.png"));
+  for (const char* name : {"/t.png", "/e.png", "/p.png"}) CHECK(fs::file_size(dir + name) > 20000);
+  // With --json the figures are reported on stderr: stdout is the JSON array alone.
+  out.clear();
+  code = RunCommand("(" + RgbdvoExe() + " eval " + gt + " " + gt + " " + gt + " --json --plot " +
+                        dir + "/t2.png 2>/dev/null)",
+                    &out);
+  REQUIRE(code == 0);
+  CHECK_THAT(out, Catch::StartsWith("[{") && Catch::EndsWith("}]\n"));
+}

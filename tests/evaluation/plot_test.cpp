@@ -15,19 +15,6 @@ using namespace rgbdvo::test;
 
 namespace {
 
-// Width and height from a PNG's IHDR chunk; {0, 0} if the file is not a PNG.
-std::pair<int, int> PngSize(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char h[24] = {};
-  in.read(reinterpret_cast<char*>(h), 24);
-  const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (!in || !std::equal(sig, sig + 8, h)) return {0, 0};
-  auto be32 = [&](int at) {
-    return (h[at] << 24) | (h[at + 1] << 16) | (h[at + 2] << 8) | h[at + 3];
-  };
-  return {be32(16), be32(20)};
-}
-
 std::vector<StampedPose> Circle(double radius, const Rigid3d& world_from_path) {
   std::vector<StampedPose> out;
   for (int k = 0; k < 60; ++k) {
