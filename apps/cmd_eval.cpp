@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "rgbdvo/evaluation/evaluation.hpp"
 #include "rgbdvo/evaluation/evaluation_plots.hpp"
+#include "rgbdvo/evaluation/evaluation_report.hpp"
 
 namespace rgbdvo::cli {
 

@@ -45,6 +45,9 @@ struct EvaluationOptions {
   void Check() const;  // throws naming the field
 };
 
+// The RPE step in words: "1 s apart", "5 frames apart", "0.5 m apart along the ground truth".
+std::string DescribeDelta(const EvaluationOptions& options);
+
 // RMSE, mean, median and max of a list of non-negative errors (all 0 when empty).
 struct ErrorStats {
   int count = 0;
@@ -105,27 +108,5 @@ struct RpeResult {
 RpeResult ComputeRpe(const std::vector<StampedPose>& groundtruth,
                      const std::vector<StampedPose>& estimate, const EvaluationOptions& options,
                      double scale = 1.0);
-
-struct EvaluationReport {
-  std::string groundtruth_path, estimate_path;
-  int groundtruth_poses = 0, estimate_poses = 0;
-  int groundtruth_repeated = 0, estimate_repeated = 0;  // rows with a repeated timestamp, dropped
-  EvaluationOptions options;
-  AteResult ate;
-  RpeResult rpe;
-  std::string Table() const;  // a short human-readable table
-  std::string Json() const;   // one JSON object
-};
-
-// Reads both files and computes ATE and RPE (the RPE with the ATE's scale). Throws for
-// unreadable files and when no estimate pose has a ground truth pose within max_dt (no
-// overlapping timestamps).
-EvaluationReport EvaluateFiles(const std::string& groundtruth_path,
-                               const std::string& estimate_path, const EvaluationOptions& options);
-
-// Several estimates against one ground truth: one row per estimate (ATE and RPE statistics),
-// and a JSON array of EvaluationReport::Json objects.
-std::string ComparisonTable(const std::vector<EvaluationReport>& reports);
-std::string ComparisonJson(const std::vector<EvaluationReport>& reports);
 
 }  // namespace rgbdvo

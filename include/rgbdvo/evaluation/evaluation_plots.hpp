@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rgbdvo/evaluation/evaluation.hpp"
+#include "rgbdvo/evaluation/evaluation_report.hpp"
 #include "rgbdvo/io/trajectory_io.hpp"
 
 namespace rgbdvo {
