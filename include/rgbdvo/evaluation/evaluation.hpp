@@ -82,6 +82,8 @@ struct AteResult {
 // brought onto the ground truth by options.align fitted to the first align_first matches, the
 // position error of every match. success=false with a reason for fewer than 3 matches (1 for
 // kOrigin and kNone) or a scale that cannot be fitted (an estimate that does not move).
+// ComputeAte and ComputeRpe take the ground truth sorted by time with unique timestamps (as
+// ReadTrajectory returns it); the estimate in any order, of repeated times the last pose counts.
 AteResult ComputeAte(const std::vector<StampedPose>& groundtruth,
                      const std::vector<StampedPose>& estimate, const EvaluationOptions& options);
 
