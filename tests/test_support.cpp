@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -93,5 +94,17 @@ int RunCommand(const std::string& command, std::string* output) {
 
 std::string RgbdvoExe() { return RGBDVO_EXE; }
 std::string SourceDir() { return RGBDVO_SOURCE_DIR; }
+
+std::pair<int, int> PngSize(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), 24);
+  const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!in || !std::equal(sig, sig + 8, h)) return {0, 0};
+  auto be32 = [&](int at) {
+    return (h[at] << 24) | (h[at + 1] << 16) | (h[at + 2] << 8) | h[at + 3];
+  };
+  return {be32(16), be32(20)};
+}
 
 }  // namespace rgbdvo::test

@@ -3,6 +3,7 @@
 
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rgbdvo/geometry/geometry.hpp"
@@ -37,6 +38,9 @@ std::string MakeTempDir(const std::string& tag);
 // A file's bytes ("" when missing), and its lines without their ends.
 std::string Slurp(const std::string& path);
 std::vector<std::string> Lines(const std::string& path);
+
+// Width and height from a PNG's IHDR chunk; {0, 0} if the file is not a PNG.
+std::pair<int, int> PngSize(const std::string& path);
 
 // Runs a shell command; returns its exit status and puts stdout+stderr into *output.
 int RunCommand(const std::string& command, std::string* output);

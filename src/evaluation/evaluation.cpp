@@ -26,43 +26,82 @@ std::vector<double> Stamps(const std::vector<StampedPose>& poses) {
   return s;
 }
 
-std::string JsonString(const std::string& s) {
-  std::ostringstream out;
-  out << '"';
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out << '\\' << c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << static_cast<int>(c)
-          << std::dec << std::setfill(' ');
-    } else {
-      out << c;
-    }
-  }
-  return out.str() + '"';
-}
-
-// The statistics, or null for each when they could not be computed (no pose or pair): a reader
-// must not mistake "not computed" for a perfect 0.
-std::string JsonStats(const ErrorStats& s, bool computed) {
-  std::ostringstream out;
-  out << std::setprecision(9);
-  const auto value = [&](double v) -> std::ostream& {
-    return computed ? (out << v) : (out << "null");
-  };
-  out << "{\"rmse\": ";
-  value(s.rmse) << ", \"mean\": ";
-  value(s.mean) << ", \"median\": ";
-  value(s.median) << ", \"max\": ";
-  value(s.max) << "}";
-  return out.str();
+// The estimate as evaluated: timestamps shifted by t_offset, the last of repeated times kept.
+std::vector<StampedPose> Shifted(const std::vector<StampedPose>& est, double t_offset_s) {
+  std::vector<StampedPose> out = est;
+  for (StampedPose& p : out) p.timestamp += t_offset_s;
+  KeepLastOfEachTime(&out);
+  return out;
 }
 
 }  // namespace
 
+std::string DescribeDelta(const EvaluationOptions& o) {
+  std::ostringstream d;
+  d << o.delta;
+  switch (o.delta_unit) {
+    case DeltaUnit::kSeconds:
+      return d.str() + " s apart";
+    case DeltaUnit::kFrames:
+      return d.str() + " frames apart";
+    case DeltaUnit::kMetres:
+      return d.str() + " m apart along the ground truth";
+  }
+  return d.str();
+}
+
+const char* AlignmentName(Alignment align) {
+  switch (align) {
+    case Alignment::kSe3:
+      return "se3";
+    case Alignment::kSim3:
+      return "sim3";
+    case Alignment::kScale:
+      return "scale";
+    case Alignment::kOrigin:
+      return "origin";
+    case Alignment::kNone:
+      return "none";
+  }
+  return "?";
+}
+
+Alignment ParseAlignment(const std::string& name) {
+  for (const Alignment a :
+       {Alignment::kSe3, Alignment::kSim3, Alignment::kScale, Alignment::kOrigin, Alignment::kNone})
+    if (name == AlignmentName(a)) return a;
+  throw std::invalid_argument("alignment '" + name +
+                              "' is not one of se3, sim3, scale, origin, none");
+}
+
+const char* DeltaUnitName(DeltaUnit unit) {
+  switch (unit) {
+    case DeltaUnit::kSeconds:
+      return "s";
+    case DeltaUnit::kFrames:
+      return "frames";
+    case DeltaUnit::kMetres:
+      return "m";
+  }
+  return "?";
+}
+
+DeltaUnit ParseDeltaUnit(const std::string& name) {
+  for (const DeltaUnit u : {DeltaUnit::kSeconds, DeltaUnit::kFrames, DeltaUnit::kMetres})
+    if (name == DeltaUnitName(u)) return u;
+  throw std::invalid_argument("delta unit '" + name + "' is not one of s, frames, m");
+}
+
 void EvaluationOptions::Check() const {
   if (!(max_dt_s > 0)) throw std::invalid_argument("EvaluationOptions.max_dt_s must be > 0 s");
-  if (!(delta_s > 0)) throw std::invalid_argument("EvaluationOptions.delta_s must be > 0 s");
+  if (!std::isfinite(t_offset_s))
+    throw std::invalid_argument("EvaluationOptions.t_offset_s must be a finite number of s");
+  if (!(delta > 0)) throw std::invalid_argument("EvaluationOptions.delta must be > 0");
+  if (delta_unit == DeltaUnit::kFrames && delta != std::floor(delta))
+    throw std::invalid_argument("EvaluationOptions.delta must be a whole number of frames");
+  if (align_first < 0 || align_first == 1 || align_first == 2)
+    throw std::invalid_argument(
+        "EvaluationOptions.align_first must be 0 (all) or at least 3 poses (a fit needs 3)");
 }
 
 ErrorStats ComputeStats(std::vector<double> e) {
@@ -114,14 +153,26 @@ std::vector<std::pair<int, int>> AssociateByTime(const std::vector<StampedPose>&
   return matches;
 }
 
-AteResult ComputeAte(const std::vector<StampedPose>& gt, const std::vector<StampedPose>& est,
+Rigid3d AteResult::Aligned(const Rigid3d& world_from_cam) const {
+  Rigid3d scaled = world_from_cam;
+  scaled.translation() *= scale;
+  return gt_from_est * scaled;
+}
+
+AteResult ComputeAte(const std::vector<StampedPose>& gt, const std::vector<StampedPose>& estimate,
                      const EvaluationOptions& options) {
   options.Check();
   AteResult r;
+  r.align = options.align;
+  const std::vector<StampedPose> est = Shifted(estimate, options.t_offset_s);
   const auto matches = AssociateByTime(gt, est, options.max_dt_s);
   r.matched = static_cast<int>(matches.size());
-  if (r.matched < 3) {
-    r.reason = "only " + std::to_string(r.matched) + " poses matched in time (need 3)";
+  const bool fitted = options.align == Alignment::kSe3 || options.align == Alignment::kSim3 ||
+                      options.align == Alignment::kScale;
+  const int need = fitted ? 3 : 1;
+  if (r.matched < need) {
+    r.reason = "only " + std::to_string(r.matched) + " poses matched in time (need " +
+               std::to_string(need) + ")";
     return r;
   }
   Eigen::Matrix3Xd p_est(3, r.matched), p_gt(3, r.matched);
@@ -129,25 +180,59 @@ AteResult ComputeAte(const std::vector<StampedPose>& gt, const std::vector<Stamp
     p_gt.col(k) = gt[matches[k].first].world_from_cam.translation();
     p_est.col(k) = est[matches[k].second].world_from_cam.translation();
   }
-  // Umeyama (1991) without scale: R from the SVD of the centred cross-covariance with the
-  // reflection case corrected, t from the centroids; the same minimiser as Horn (1987).
-  r.gt_from_est.matrix() = Eigen::umeyama(p_est, p_gt, false);
-  std::vector<double> errors(r.matched);
-  for (int k = 0; k < r.matched; ++k)
-    errors[k] = (r.gt_from_est * p_est.col(k) - p_gt.col(k)).norm();
-  r.error_m = ComputeStats(errors);
+  r.aligned_on = !fitted                   ? (options.align == Alignment::kOrigin ? 1 : 0)
+                 : options.align_first > 0 ? std::min(options.align_first, r.matched)
+                                           : r.matched;
+  if (fitted) {
+    // Umeyama (1991): R from the SVD of the centred cross-covariance with the reflection case
+    // corrected, the scale c = trace(D S) / var(p_est) when asked for, t from the centroids.
+    // Without scale it is the same minimiser as Horn (1987).
+    const bool with_scale = options.align != Alignment::kSe3;
+    const Eigen::Matrix4d m =
+        r.aligned_on == r.matched
+            ? Eigen::Matrix4d(Eigen::umeyama(p_est, p_gt, with_scale))
+            : Eigen::Matrix4d(Eigen::umeyama(p_est.leftCols(r.aligned_on),
+                                             p_gt.leftCols(r.aligned_on), with_scale));
+    if (!with_scale) {
+      r.gt_from_est.matrix() = m;
+    } else {
+      r.scale = m.block<3, 3>(0, 0).col(0).norm();  // the columns of c R have length c
+      if (!(std::isfinite(r.scale) && r.scale > 1e-12)) {
+        r.reason = "no scale: the estimate does not move over the poses aligned on";
+        r.scale = 1;
+        return r;
+      }
+      if (options.align == Alignment::kSim3) {
+        r.gt_from_est.linear() = m.block<3, 3>(0, 0) / r.scale;
+        r.gt_from_est.translation() = m.block<3, 1>(0, 3);
+      }
+    }
+  } else if (options.align == Alignment::kOrigin) {
+    // The whole first pose, rotation too: gt_from_est * P_0 = Q_0.
+    r.gt_from_est =
+        gt[matches[0].first].world_from_cam * est[matches[0].second].world_from_cam.inverse();
+  }
+  r.pose_times_s.resize(r.matched);
+  r.pose_errors_m.resize(r.matched);
+  for (int k = 0; k < r.matched; ++k) {
+    r.pose_times_s[k] = est[matches[k].second].timestamp;
+    r.pose_errors_m[k] = (r.gt_from_est * (r.scale * p_est.col(k)) - p_gt.col(k)).norm();
+  }
+  r.error_m = ComputeStats(r.pose_errors_m);
   r.success = true;
   return r;
 }
 
-RpeResult ComputeRpe(const std::vector<StampedPose>& gt, const std::vector<StampedPose>& est,
-                     const EvaluationOptions& options) {
-  options.Check();
-  RpeResult r;
-  if (gt.size() < 2 || est.size() < 2) {
-    r.reason = "need at least 2 poses in each trajectory";
-    return r;
-  }
+namespace {
+
+// Pairs (i, j) of estimate indices and their ground truth poses (gi, gj).
+struct RpePair {
+  size_t i, j, gi, gj;
+};
+
+// TUM `evaluate_rpe.py --fixed_delta`: see ComputeRpe.
+std::vector<RpePair> PairsBySeconds(const std::vector<StampedPose>& gt,
+                                    const std::vector<StampedPose>& est, double delta_s) {
   const std::vector<double> gt_stamps = Stamps(gt), est_stamps = Stamps(est);
   std::vector<double> intervals;
   for (size_t k = 1; k < gt_stamps.size(); ++k)
@@ -160,18 +245,76 @@ RpeResult ComputeRpe(const std::vector<StampedPose>& gt, const std::vector<Stamp
     median_interval = 0.5 * (median_interval + lower);
   }
   const double max_gt_dt = 2 * median_interval;
-
-  std::vector<double> trans, rot;
+  std::vector<RpePair> pairs;
   for (size_t i = 0; i < est.size(); ++i) {
-    const size_t j = NearestIndex(est_stamps, est_stamps[i] + options.delta_s);
+    const size_t j = NearestIndex(est_stamps, est_stamps[i] + delta_s);
     if (j == est.size() - 1) continue;
     const size_t gi = NearestIndex(gt_stamps, est_stamps[i]);
     const size_t gj = NearestIndex(gt_stamps, est_stamps[j]);
     if (std::abs(gt_stamps[gi] - est_stamps[i]) > max_gt_dt ||
         std::abs(gt_stamps[gj] - est_stamps[j]) > max_gt_dt)
       continue;
-    const Rigid3d est_j_from_i = est[j].world_from_cam.inverse() * est[i].world_from_cam;
-    const Rigid3d gt_j_from_i = gt[gj].world_from_cam.inverse() * gt[gi].world_from_cam;
+    pairs.push_back({i, j, gi, gj});
+  }
+  return pairs;
+}
+
+// Pairs of the time-matched sequence `m` (gt index, estimate index) k steps apart, or delta
+// metres apart along the ground truth's path through the matched poses (within 10%).
+std::vector<RpePair> PairsOfMatches(const std::vector<StampedPose>& gt,
+                                    const std::vector<std::pair<int, int>>& m,
+                                    const EvaluationOptions& o) {
+  std::vector<RpePair> pairs;
+  const auto pair = [&](size_t k, size_t l) {
+    pairs.push_back(
+        {size_t(m[k].second), size_t(m[l].second), size_t(m[k].first), size_t(m[l].first)});
+  };
+  if (o.delta_unit == DeltaUnit::kFrames) {
+    const size_t step = static_cast<size_t>(o.delta);
+    for (size_t k = 0; k + step < m.size(); ++k) pair(k, k + step);
+    return pairs;
+  }
+  std::vector<double> path(m.size(), 0.0);  // ground truth path length from the first match
+  for (size_t k = 1; k < m.size(); ++k)
+    path[k] = path[k - 1] + (gt[m[k].first].world_from_cam.translation() -
+                             gt[m[k - 1].first].world_from_cam.translation())
+                                .norm();
+  for (size_t k = 0; k + 1 < m.size(); ++k) {
+    // path is non-decreasing: the nearest to path[k] + delta is at the lower bound or before.
+    const auto it = std::lower_bound(path.begin() + k + 1, path.end(), path[k] + o.delta);
+    size_t l = static_cast<size_t>(it - path.begin());
+    if (l == m.size() ||
+        (l > k + 1 && path[k] + o.delta - path[l - 1] <= path[l] - path[k] - o.delta))
+      --l;
+    if (std::abs(path[l] - path[k] - o.delta) <= 0.1 * o.delta) pair(k, l);
+  }
+  return pairs;
+}
+
+}  // namespace
+
+RpeResult ComputeRpe(const std::vector<StampedPose>& gt, const std::vector<StampedPose>& estimate,
+                     const EvaluationOptions& options, double scale) {
+  options.Check();
+  RpeResult r;
+  if (gt.size() < 2 || estimate.size() < 2) {
+    r.reason = "need at least 2 poses in each trajectory";
+    return r;
+  }
+  const std::vector<StampedPose> est = Shifted(estimate, options.t_offset_s);
+  std::vector<std::pair<int, int>> matches;
+  std::vector<RpePair> pairs;
+  if (options.delta_unit == DeltaUnit::kSeconds) {
+    pairs = PairsBySeconds(gt, est, options.delta);
+  } else {
+    matches = AssociateByTime(gt, est, options.max_dt_s);
+    pairs = PairsOfMatches(gt, matches, options);
+  }
+  std::vector<double> trans, rot;
+  for (const RpePair& p : pairs) {
+    Rigid3d est_j_from_i = est[p.j].world_from_cam.inverse() * est[p.i].world_from_cam;
+    est_j_from_i.translation() *= scale;
+    const Rigid3d gt_j_from_i = gt[p.gj].world_from_cam.inverse() * gt[p.gi].world_from_cam;
     const Rigid3d E = est_j_from_i.inverse() * gt_j_from_i;
     trans.push_back(E.translation().norm());
     rot.push_back(RotationAngleDeg(E.linear()));
@@ -182,8 +325,12 @@ RpeResult ComputeRpe(const std::vector<StampedPose>& gt, const std::vector<Stamp
   r.success = r.pairs > 0;
   if (!r.success) {
     std::ostringstream why;
-    why << "no pose pairs " << options.delta_s << " s apart with ground truth (estimate spans "
-        << est_stamps.back() - est_stamps.front() << " s)";
+    why << "no pose pairs " << DescribeDelta(options);
+    if (options.delta_unit == DeltaUnit::kSeconds)
+      why << " with ground truth (estimate spans " << est.back().timestamp - est.front().timestamp
+          << " s)";
+    else
+      why << " among " << matches.size() << " poses matched";
     r.reason = why.str();
   }
   return r;
@@ -194,7 +341,7 @@ std::string AteResult::Brief() const {
   std::ostringstream s;
   s << std::fixed << std::setprecision(4) << "ATE: rmse " << error_m.rmse << " m, mean "
     << error_m.mean << " m, median " << error_m.median << " m, max " << error_m.max << " m over "
-    << matched << " poses";
+    << matched << " poses matched";
   return s.str();
 }
 
@@ -203,85 +350,6 @@ std::string RpeResult::Brief() const {
   std::ostringstream s;
   s << std::fixed << std::setprecision(4) << "RPE: rmse " << trans_m.rmse << " m, "
     << std::setprecision(3) << rot_deg.rmse << " deg per delta over " << pairs << " pairs";
-  return s.str();
-}
-
-EvaluationReport EvaluateFiles(const std::string& gt_path, const std::string& est_path,
-                               const EvaluationOptions& options) {
-  options.Check();
-  const Trajectory gt = ReadTrajectory(gt_path);
-  const Trajectory est = ReadTrajectory(est_path);
-  EvaluationReport report;
-  report.groundtruth_path = gt_path;
-  report.estimate_path = est_path;
-  report.groundtruth_poses = static_cast<int>(gt.poses.size());
-  report.estimate_poses = static_cast<int>(est.poses.size());
-  report.groundtruth_repeated = gt.repeated_timestamps;
-  report.estimate_repeated = est.repeated_timestamps;
-  report.options = options;
-  report.ate = ComputeAte(gt.poses, est.poses, options);
-  if (report.ate.matched == 0) {
-    std::ostringstream msg;
-    msg << std::fixed << std::setprecision(3) << est_path << ": no pose within " << options.max_dt_s
-        << " s of a ground truth pose in " << gt_path << " (estimate spans "
-        << est.poses.front().timestamp << ".." << est.poses.back().timestamp << " s, ground truth "
-        << gt.poses.front().timestamp << ".." << gt.poses.back().timestamp
-        << " s): no overlapping timestamps";
-    throw std::runtime_error(msg.str());
-  }
-  report.rpe = ComputeRpe(gt.poses, est.poses, options);
-  return report;
-}
-
-std::string EvaluationReport::Table() const {
-  std::ostringstream s;
-  s << "ground truth: " << groundtruth_path << " (" << groundtruth_poses << " poses)\n"
-    << "estimate:     " << estimate_path << " (" << estimate_poses << " poses)\n"
-    << "ATE: " << ate.matched << " poses matched within " << options.max_dt_s
-    << " s, rigid alignment without scale\n"
-    << "RPE: " << rpe.pairs << " pairs " << options.delta_s << " s apart\n";
-  if (groundtruth_repeated + estimate_repeated > 0)
-    s << "note: rows with a repeated timestamp (the last one kept, as the TUM tools do): "
-      << estimate_repeated << " in the estimate, " << groundtruth_repeated
-      << " in the ground truth\n";
-  s << "\n";
-  s << std::left << std::setw(22) << "" << std::right << std::setw(10) << "rmse" << std::setw(10)
-    << "mean" << std::setw(10) << "median" << std::setw(10) << "max"
-    << "\n";
-  auto row = [&](const std::string& name, bool ok, const ErrorStats& e, int precision,
-                 const std::string& why) {
-    s << std::left << std::setw(22) << name << std::right;
-    if (!ok) {
-      s << "  n/a (" << why << ")\n";
-      return;
-    }
-    s << std::fixed << std::setprecision(precision) << std::setw(10) << e.rmse << std::setw(10)
-      << e.mean << std::setw(10) << e.median << std::setw(10) << e.max << "\n";
-  };
-  std::ostringstream d;
-  d << options.delta_s;
-  row("ATE (m)", ate.success, ate.error_m, 4, ate.reason);
-  row("RPE trans (m/" + d.str() + "s)", rpe.success, rpe.trans_m, 4, rpe.reason);
-  row("RPE rot (deg/" + d.str() + "s)", rpe.success, rpe.rot_deg, 3, rpe.reason);
-  return s.str();
-}
-
-std::string EvaluationReport::Json() const {
-  std::ostringstream s;
-  s << std::setprecision(9) << "{\"groundtruth\": " << JsonString(groundtruth_path)
-    << ", \"estimate\": " << JsonString(estimate_path)
-    << ", \"groundtruth_poses\": " << groundtruth_poses
-    << ", \"estimate_poses\": " << estimate_poses
-    << ", \"groundtruth_repeated\": " << groundtruth_repeated
-    << ", \"estimate_repeated\": " << estimate_repeated << ", \"max_dt_s\": " << options.max_dt_s
-    << ", \"delta_s\": " << options.delta_s
-    << ",\n \"ate\": {\"success\": " << (ate.success ? "true" : "false")
-    << ", \"matched\": " << ate.matched << ", \"reason\": " << JsonString(ate.reason)
-    << ", \"error_m\": " << JsonStats(ate.error_m, ate.success)
-    << "},\n \"rpe\": {\"success\": " << (rpe.success ? "true" : "false")
-    << ", \"pairs\": " << rpe.pairs << ", \"reason\": " << JsonString(rpe.reason)
-    << ", \"trans_m\": " << JsonStats(rpe.trans_m, rpe.success)
-    << ", \"rot_deg\": " << JsonStats(rpe.rot_deg, rpe.success) << "}}\n";
   return s.str();
 }
 

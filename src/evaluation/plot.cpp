@@ -1,24 +1,14 @@
 #include "rgbdvo/evaluation/plot.hpp"
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
-#include "rgbdvo/util/temp_dir.hpp"
+#include "rgbdvo/evaluation/gnuplot.hpp"
 
 namespace rgbdvo {
 namespace {
-
-namespace fs = std::filesystem;
 
 // A 2D panel: horizontal and vertical coordinates of a camera position (x right, y down,
 // z forward).
@@ -36,59 +26,12 @@ const Panel kPanels[] = {
      [](const Eigen::Vector3d& p) { return Eigen::Vector2d(p.z(), -p.y()); }},
 };
 
-// A gnuplot single-quoted string: gnuplot expands nothing inside single quotes (no backquote
-// command substitution, no @macros, no backslash escapes), a quote is written twice, and control
-// characters (newlines end a command) become spaces. Our strings (paths, titles, reasons) thus
-// stay text, whatever a user or a recording's name puts in them.
-std::string Quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char c : s) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '\'')
-      out += "''";
-    else
-      out += (byte < 0x20 || byte == 0x7f) ? ' ' : c;
-  }
-  return out + "'";
-}
-
-// Runs `program script` in `dir` with stderr into `err_path` and no shell in between: the
-// program's name and the paths reach exec() as they are. Returns the exit code, 127 when the
-// program cannot be started, -1 when it did not exit normally.
-int RunInFolder(const std::string& program, const fs::path& dir, const std::string& script,
-                const fs::path& err_path) {
-  // Everything the child needs is prepared before fork(): after it only async-signal-safe calls.
-  const std::string dir_s = dir.string(), err_s = err_path.string();
-  std::vector<char*> argv = {const_cast<char*>(program.c_str()), const_cast<char*>(script.c_str()),
-                             nullptr};
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("plot: cannot start " + program);
-  if (pid == 0) {
-    const int err = open(err_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    const int in = open("/dev/null", O_RDONLY);
-    if (err < 0 || in < 0 || dup2(err, 2) < 0 || dup2(in, 0) < 0 || chdir(dir_s.c_str()) != 0)
-      _exit(126);
-    execvp(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-void WritePoints(const fs::path& path, const std::vector<Eigen::Vector3d>& points) {
-  std::ofstream out(path);
+// Rows `x y z` of a gnuplot data file.
+std::string Points(const std::vector<Eigen::Vector3d>& points) {
+  std::ostringstream out;
   out << std::setprecision(9);
   for (const Eigen::Vector3d& p : points) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  if (!out) throw std::runtime_error(path.string() + ": cannot write plot data");
-}
-
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return out.str();
 }
 
 }  // namespace
@@ -107,16 +50,19 @@ std::string PlotResult::Brief() const {
   s << "wrote " << png_path << ": estimate " << estimate_poses << " poses";
   if (groundtruth_poses == 0) return s.str() + ", no ground truth";
   if (!aligned) return s.str() + ", ground truth not drawn (" + ate.reason + ")";
-  s << ", ground truth aligned on " << ate.matched << " poses (ATE rmse " << std::fixed
-    << std::setprecision(4) << ate.error_m.rmse << " m)";
+  s << ", " << ate.matched << " poses matched with ground truth, rigidly aligned (ATE rmse "
+    << std::fixed << std::setprecision(4) << ate.error_m.rmse << " m)";
   return s.str();
 }
 
-PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
+PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate_poses,
                           const std::vector<StampedPose>& groundtruth, const std::string& png_path,
                           const PlotOptions& options) {
   options.Check();
-  if (estimate.empty()) throw std::runtime_error("plot: the estimate has no poses");
+  if (estimate_poses.empty()) throw std::runtime_error("plot: the estimate has no poses");
+  // Counted and matched as the same poses written to a file and read back (`rgbdvo eval`).
+  std::vector<StampedPose> estimate = estimate_poses;
+  KeepLastOfEachTime(&estimate);
   PlotResult result;
   result.png_path = png_path;
   result.estimate_poses = static_cast<int>(estimate.size());
@@ -136,18 +82,12 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
     }
   }
 
-  const ScopedTempDir scoped_tmp("rgbdvo_plot_");
-  const fs::path tmp = scoped_tmp.path();
-  WritePoints(tmp / "est.dat", est);
-  WritePoints(tmp / "gt.dat", gt);
-  WritePoints(tmp / "start.dat", {est.front()});
-  WritePoints(tmp / "end.dat", {est.back()});
-
   std::string subtitle = "estimate: " + std::to_string(est.size()) + " poses";
   if (result.aligned) {
     std::ostringstream s;
-    s << std::fixed << std::setprecision(3) << "   ground truth: rigidly aligned on "
-      << result.ate.matched << " poses, ATE RMSE " << result.ate.error_m.rmse << " m";
+    s << std::fixed << std::setprecision(3) << "   " << result.ate.matched
+      << " poses matched with ground truth, rigidly aligned, ATE RMSE " << result.ate.error_m.rmse
+      << " m";
     subtitle += s.str();
   } else if (!groundtruth.empty()) {
     subtitle += "   ground truth not drawn: " + result.ate.reason;
@@ -166,8 +106,9 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
      << options.height_px << " font 'DejaVu Sans,13' linewidth 1.6\n"
      << "set output 'plot.png'\n"
      << "set multiplot\n"
-     << "set label 1001 " << Quoted(title) << " at screen 0.5, screen 0.965 center font ',16'\n"
-     << "set label 1002 " << Quoted(subtitle)
+     << "set label 1001 " << GnuplotQuoted(title)
+     << " at screen 0.5, screen 0.965 center font ',16'\n"
+     << "set label 1002 " << GnuplotQuoted(subtitle)
      << " at screen 0.5, screen 0.925 center font ',11' tc rgb '#444444'\n"
      << "set border lw 1\nset tics out nomirror\nset mxtics 2\nset mytics 2\nunset key\n"
      << "set grid xtics ytics mxtics mytics lt 1 lw 0.8 lc rgb '#dcdcdc', lt 1 lw 0.6 lc rgb "
@@ -191,8 +132,9 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
     const double centre = 0.27 + 0.5 * k;  // a little right of the half: room for the y label
     gp << "set lmargin at screen " << centre - panel_w / 2 << "\nset rmargin at screen "
        << centre + panel_w / 2 << "\n"
-       << "set title " << Quoted(panel.title) << " font ',14'\n"
-       << "set xlabel " << Quoted(panel.xlabel) << "\nset ylabel " << Quoted(panel.ylabel) << "\n"
+       << "set title " << GnuplotQuoted(panel.title) << " font ',14'\n"
+       << "set xlabel " << GnuplotQuoted(panel.xlabel) << "\nset ylabel "
+       << GnuplotQuoted(panel.ylabel) << "\n"
        << "set xrange [" << mid.x() - span / 2 << ":" << mid.x() + span / 2 << "]\n"
        << "set yrange [" << mid.y() - span / 2 << ":" << mid.y() + span / 2 << "]\n";
     const std::string u = std::string(" using ") + panel.columns + " ";
@@ -213,32 +155,14 @@ PlotResult PlotTrajectory(const std::vector<StampedPose>& estimate,
   gp << "NaN " << est_style << " title 'estimate', NaN " << start_style << " title 'start', NaN "
      << end_style << " title 'end'\n"
      << "unset multiplot\n";
-  {
-    std::ofstream out(tmp / "plot.gp");
-    out << gp.str();
-    if (!out) throw std::runtime_error((tmp / "plot.gp").string() + ": cannot write");
-  }
-  // gnuplot writes into our temporary folder; the image is then copied to where the user asked,
+  // gnuplot writes into a temporary folder; the image is then copied to where the user asked,
   // so the user's path never enters the script.
-  const int code = RunInFolder(options.gnuplot, tmp, "plot.gp", tmp / "err.txt");
-  if (code == 127)
-    throw std::runtime_error("plot: '" + options.gnuplot +
-                             "' not found; install the Debian package gnuplot-nox "
-                             "(scripts/setup.sh does)");
-  if (code != 0) {
-    std::string err = ReadAll(tmp / "err.txt");
-    std::replace(err.begin(), err.end(), '\n', ' ');
-    throw std::runtime_error("plot: " + options.gnuplot + " failed (exit " + std::to_string(code) +
-                             ") writing " + png_path + ": " + err.substr(0, 300));
-  }
-  std::error_code ec;
-  const fs::path image = tmp / "plot.png";
-  if (!fs::exists(image, ec) || fs::file_size(image, ec) == 0)
-    throw std::runtime_error("plot: " + png_path + ": gnuplot wrote no image");
-  const fs::path parent = fs::path(png_path).parent_path();
-  if (!parent.empty()) fs::create_directories(parent, ec);  // a failure shows in the copy
-  fs::copy_file(image, png_path, fs::copy_options::overwrite_existing, ec);
-  if (ec) throw std::runtime_error("plot: " + png_path + ": " + ec.message());
+  RenderGnuplot(options.gnuplot, gp.str(),
+                {{"est.dat", Points(est)},
+                 {"gt.dat", Points(gt)},
+                 {"start.dat", Points({est.front()})},
+                 {"end.dat", Points({est.back()})}},
+                png_path);
   return result;
 }
 

@@ -73,20 +73,23 @@ Trajectory ReadTrajectory(const std::string& path) {
   }
   if (traj.poses.empty())
     throw std::runtime_error(path + ": no poses (empty file or only comments/header)");
-  // Sort by time keeping file order among equal times, then keep the last of each time.
-  std::stable_sort(
-      traj.poses.begin(), traj.poses.end(),
-      [](const StampedPose& a, const StampedPose& b) { return a.timestamp < b.timestamp; });
-  std::vector<StampedPose> unique;
-  for (size_t k = 0; k < traj.poses.size(); ++k) {
-    if (k + 1 < traj.poses.size() && traj.poses[k + 1].timestamp == traj.poses[k].timestamp) {
-      ++traj.repeated_timestamps;
-      continue;
-    }
-    unique.push_back(traj.poses[k]);
-  }
-  traj.poses = std::move(unique);
+  traj.repeated_timestamps = KeepLastOfEachTime(&traj.poses);
   return traj;
+}
+
+int KeepLastOfEachTime(std::vector<StampedPose>* poses) {
+  // Sort by time keeping the given order among equal times, then keep the last of each time.
+  std::stable_sort(poses->begin(), poses->end(), [](const StampedPose& a, const StampedPose& b) {
+    return a.timestamp < b.timestamp;
+  });
+  std::vector<StampedPose> unique;
+  unique.reserve(poses->size());
+  for (size_t k = 0; k < poses->size(); ++k)
+    if (k + 1 == poses->size() || (*poses)[k + 1].timestamp != (*poses)[k].timestamp)
+      unique.push_back((*poses)[k]);
+  const int dropped = static_cast<int>(poses->size() - unique.size());
+  *poses = std::move(unique);
+  return dropped;
 }
 
 void WritePoseFields(std::ostream& out, const Rigid3d& T, char sep) {

@@ -3,7 +3,6 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
 
 #include "test_support.hpp"
 
@@ -89,7 +88,7 @@ TEST_CASE("A constant per-second drift gives a known RPE") {
   CHECK(rpe.rot_deg.max < 1e-6);
 
   EvaluationOptions half;
-  half.delta_s = 0.5;
+  half.delta = 0.5;
   CHECK(ComputeRpe(gt, est, half).trans_m.rmse == Approx(0.01).epsilon(1e-9));
 
   // A camera that stays put while the estimate turns at 2 deg/s about its own centre: every
@@ -150,26 +149,249 @@ TEST_CASE("Error statistics: rmse, mean, median, max") {
   CHECK(ComputeStats({5, 1, 2}).median == 2);
 }
 
-TEST_CASE("Evaluation refuses no overlap and bad options, and reports too short runs") {
-  const std::string dir = MakeTempDir("eval");
-  std::ofstream(dir + "/gt.txt") << "1 0 0 0 0 0 0 1\n1.1 0 0 0 0 0 0 1\n1.2 0 0 0 0 0 0 1\n";
-  std::ofstream(dir + "/est.txt") << "5 0 0 0 0 0 0 1\n5.1 0 0 0 0 0 0 1\n";
-  CHECK_THROWS_WITH(EvaluateFiles(dir + "/gt.txt", dir + "/est.txt", {}),
-                    Catch::Contains("no overlapping timestamps") && Catch::Contains("est.txt"));
+namespace {
 
-  EvaluationOptions bad;
-  bad.delta_s = -1;
-  CHECK_THROWS_WITH(bad.Check(), Catch::Contains("delta_s"));
+// The ground truth seen through a similarity: est = est_from_gt * (c * p_gt), rotations turned
+// by est_from_gt. The least-squares similarity back is exact: scale 1 / c.
+std::vector<StampedPose> Similar(const std::vector<StampedPose>& gt, const Rigid3d& est_from_gt,
+                                 double c) {
+  std::vector<StampedPose> est = gt;
+  for (StampedPose& p : est) {
+    p.world_from_cam.translation() *= c;
+    p.world_from_cam = est_from_gt * p.world_from_cam;
+  }
+  return est;
+}
 
-  // Same three poses: ATE works, RPE has no pair 1 s apart.
-  const EvaluationReport r = EvaluateFiles(dir + "/gt.txt", dir + "/gt.txt", {});
-  CHECK(r.ate.success);
-  CHECK_FALSE(r.rpe.success);
-  CHECK_THAT(r.Table(), Catch::Contains("n/a"));
-  CHECK_THAT(r.Json(), Catch::Contains("\"rpe\": {\"success\": false"));
-  // What could not be computed is null, never a perfect 0; what was computed is a number.
-  CHECK_THAT(r.Json(), Catch::Contains("\"trans_m\": {\"rmse\": null, \"mean\": null, "
-                                       "\"median\": null, \"max\": null}"));
-  CHECK_THAT(r.Json(), Catch::Contains("\"rot_deg\": {\"rmse\": null"));
-  CHECK_THAT(r.Json(), Catch::Contains("\"error_m\": {\"rmse\": 0"));
+// Root mean square distance of the positions from their centroid.
+double RmsSpread(const std::vector<StampedPose>& poses) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const StampedPose& p : poses) mean += p.world_from_cam.translation();
+  mean /= poses.size();
+  double sum_sq = 0;
+  for (const StampedPose& p : poses)
+    sum_sq += (p.world_from_cam.translation() - mean).squaredNorm();
+  return std::sqrt(sum_sq / poses.size());
+}
+
+EvaluationOptions Aligned(Alignment align) {
+  EvaluationOptions o;
+  o.align = align;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("se3 leaves a scale error, sim3 recovers the scale exactly") {
+  const std::vector<StampedPose> gt = CurvyPath();
+  std::mt19937 rng(7);
+  const double c = 0.8;
+  const std::vector<StampedPose> est = Similar(gt, RandomRigid(rng, 1.5, 2.0), c);
+
+  // The rigid fit still finds the rotation (the cross-covariance is c times the exact one) and
+  // puts the centroids together: every pose is off by (1 - c) times its distance from the
+  // centroid.
+  const AteResult se3 = ComputeAte(gt, est, Aligned(Alignment::kSe3));
+  REQUIRE(se3.success);
+  CHECK(se3.scale == 1);
+  CHECK(se3.error_m.rmse == Approx((1 - c) * RmsSpread(gt)).epsilon(1e-9));
+
+  const AteResult sim3 = ComputeAte(gt, est, Aligned(Alignment::kSim3));
+  REQUIRE(sim3.success);
+  CHECK(sim3.scale == Approx(1 / c).epsilon(1e-12));
+  CHECK(sim3.error_m.max < 1e-9);
+  CHECK(sim3.aligned_on == 50);
+  // Aligned() maps every estimate pose, rotation included, onto its ground truth pose.
+  for (size_t k = 0; k < gt.size(); k += 7)
+    CHECK(RigidNear(sim3.Aligned(est[k].world_from_cam), gt[k].world_from_cam, 1e-6, 1e-9));
+}
+
+TEST_CASE("scale alone corrects the scale about the origin and nothing else") {
+  const std::vector<StampedPose> gt = CurvyPath();
+  // est = 0.8 * gt about the origin, same orientations: the scale fixes it all.
+  const std::vector<StampedPose> est = Similar(gt, Rigid3d::Identity(), 0.8);
+  const AteResult scale = ComputeAte(gt, est, Aligned(Alignment::kScale));
+  REQUIRE(scale.success);
+  CHECK(scale.scale == Approx(1.25).epsilon(1e-12));
+  CHECK(scale.error_m.max < 1e-9);
+  CHECK(RigidNear(scale.gt_from_est, Rigid3d::Identity(), 1e-12, 1e-12));
+
+  // Moved as well: the scale is still Umeyama's (1.25), but no rotation or translation is
+  // applied, so the error is the raw distance of 1.25 * p_est from p_gt.
+  std::mt19937 rng(8);
+  const Rigid3d moved = RandomRigid(rng, 0.5, 1.0);
+  const std::vector<StampedPose> est_moved = Similar(gt, moved, 0.8);
+  const AteResult r = ComputeAte(gt, est_moved, Aligned(Alignment::kScale));
+  REQUIRE(r.success);
+  CHECK(r.scale == Approx(1.25).epsilon(1e-12));
+  const double first =
+      (1.25 * est_moved[0].world_from_cam.translation() - gt[0].world_from_cam.translation())
+          .norm();
+  CHECK(r.pose_errors_m[0] == Approx(first).epsilon(1e-12));
+  CHECK(r.error_m.rmse > 0.1);
+}
+
+TEST_CASE("origin puts the first estimate pose exactly onto the first ground truth pose") {
+  const std::vector<StampedPose> gt = CurvyPath();
+  std::mt19937 rng(9);
+  const Rigid3d est_from_gt = RandomRigid(rng, 2.0, 3.0);
+  std::vector<StampedPose> est = gt;
+  for (StampedPose& p : est) p.world_from_cam = est_from_gt * p.world_from_cam;
+  // A rigidly moved estimate is mapped back whole.
+  AteResult r = ComputeAte(gt, est, Aligned(Alignment::kOrigin));
+  REQUIRE(r.success);
+  CHECK(r.aligned_on == 1);
+  CHECK(r.error_m.max < 1e-9);
+
+  // An estimate that drifts: the first pose still lands exactly, its rotation too, and the
+  // error grows from 0 with the drift (0.01 m per pose along the ground truth's z).
+  for (size_t k = 0; k < est.size(); ++k)
+    est[k].world_from_cam =
+        est_from_gt * Eigen::Translation3d(0, 0, 0.01 * k) * gt[k].world_from_cam;
+  r = ComputeAte(gt, est, Aligned(Alignment::kOrigin));
+  REQUIRE(r.success);
+  CHECK(RigidNear(r.Aligned(est[0].world_from_cam), gt[0].world_from_cam, 1e-6, 1e-12));
+  CHECK(r.pose_errors_m[0] < 1e-12);
+  CHECK(r.pose_errors_m[49] == Approx(0.49).epsilon(1e-9));
+  CHECK(r.error_m.max == Approx(0.49).epsilon(1e-9));
+}
+
+TEST_CASE("none compares the raw positions") {
+  const std::vector<StampedPose> gt = CurvyPath();
+  std::vector<StampedPose> est = gt;
+  for (StampedPose& p : est) p.world_from_cam.translation() += Eigen::Vector3d(0.3, 0, 0.4);
+  const AteResult none = ComputeAte(gt, est, Aligned(Alignment::kNone));
+  REQUIRE(none.success);
+  CHECK(none.aligned_on == 0);
+  CHECK(none.error_m.rmse == Approx(0.5).epsilon(1e-12));
+  CHECK(none.error_m.max == Approx(0.5).epsilon(1e-12));
+  CHECK(ComputeAte(gt, est, Aligned(Alignment::kSe3)).error_m.max < 1e-9);
+  // One matched pose is enough without a fit; a fit needs 3.
+  const std::vector<StampedPose> one = {est[0]};
+  CHECK(ComputeAte(gt, one, Aligned(Alignment::kNone)).success);
+  CHECK(ComputeAte(gt, one, Aligned(Alignment::kOrigin)).success);
+  const AteResult se3 = ComputeAte(gt, one, Aligned(Alignment::kSe3));
+  CHECK_FALSE(se3.success);
+  CHECK_THAT(se3.reason, Catch::Contains("need 3"));
+}
+
+TEST_CASE("align_first fits the alignment to the first N matched poses only") {
+  // The estimate follows the ground truth (moved rigidly) for 20 poses, then jumps 0.5 m: fitted
+  // to the first 20, those are exact and the other 30 are 0.5 m off.
+  const std::vector<StampedPose> gt = CurvyPath();
+  std::mt19937 rng(10);
+  const Rigid3d est_from_gt = RandomRigid(rng, 1.0, 1.0);
+  std::vector<StampedPose> est = gt;
+  for (size_t k = 0; k < est.size(); ++k) {
+    if (k >= 20) est[k].world_from_cam.translation() += Eigen::Vector3d(0, 0.5, 0);
+    est[k].world_from_cam = est_from_gt * est[k].world_from_cam;
+  }
+  EvaluationOptions o;
+  o.align_first = 20;
+  const AteResult r = ComputeAte(gt, est, o);
+  REQUIRE(r.success);
+  CHECK(r.matched == 50);
+  CHECK(r.aligned_on == 20);
+  CHECK(r.pose_errors_m[19] < 1e-9);
+  CHECK(r.error_m.max == Approx(0.5).epsilon(1e-9));
+  CHECK(r.error_m.median == Approx(0.5).epsilon(1e-9));
+  CHECK(r.error_m.mean == Approx(0.3).epsilon(1e-9));
+  // Fitted to all poses, the jump is spread: a lower maximum.
+  CHECK(ComputeAte(gt, est, {}).error_m.max < 0.45);
+
+  o.align_first = 2;
+  CHECK_THROWS_WITH(o.Check(), Catch::Contains("align_first"));
+}
+
+TEST_CASE("t_offset recovers an estimate stamped by a clock 0.3 s behind") {
+  const std::vector<StampedPose> gt = CurvyPath();
+  std::vector<StampedPose> est = gt;
+  for (StampedPose& p : est) p.timestamp -= 0.3;
+  // Unshifted, pose k is matched with ground truth pose k - 3: a real error.
+  const AteResult wrong = ComputeAte(gt, est, {});
+  REQUIRE(wrong.success);
+  CHECK(wrong.matched == 47);
+  CHECK(wrong.error_m.rmse > 0.05);
+  EvaluationOptions o;
+  o.t_offset_s = 0.3;
+  const AteResult ate = ComputeAte(gt, est, o);
+  REQUIRE(ate.success);
+  CHECK(ate.matched == 50);
+  CHECK(ate.error_m.max < 1e-9);
+  CHECK(ate.pose_times_s.front() == Approx(100.0).margin(1e-9));
+  const RpeResult rpe = ComputeRpe(gt, est, o);
+  REQUIRE(rpe.success);
+  CHECK(rpe.trans_m.max < 1e-9);
+}
+
+TEST_CASE("RPE in frames and in metres on a constant-velocity line is exact") {
+  // Ground truth at 1 m/s along x (0.1 m per pose), the estimate at 1.2 m/s: 5 poses apart,
+  // the estimate went 0.6 m where the truth went 0.5 m.
+  const auto gt = Sampled(51, 0.0, [](double t) { return Pose(0, {t, 0, 0}); });
+  const auto est = Sampled(51, 0.0, [](double t) { return Pose(0, {1.2 * t, 0, 0}); });
+  EvaluationOptions frames;
+  frames.delta = 5;
+  frames.delta_unit = DeltaUnit::kFrames;
+  RpeResult rpe = ComputeRpe(gt, est, frames);
+  REQUIRE(rpe.success);
+  CHECK(rpe.pairs == 46);  // (0, 5) .. (45, 50)
+  CHECK(rpe.trans_m.rmse == Approx(0.1).epsilon(1e-9));
+  CHECK(rpe.trans_m.max == Approx(0.1).epsilon(1e-9));
+
+  EvaluationOptions metres;
+  metres.delta = 0.5;
+  metres.delta_unit = DeltaUnit::kMetres;
+  rpe = ComputeRpe(gt, est, metres);
+  REQUIRE(rpe.success);
+  CHECK(rpe.pairs == 46);  // from pose 46 on, less than 0.45 m of path is left
+  CHECK(rpe.trans_m.rmse == Approx(0.1).epsilon(1e-9));
+
+  // Twice the speed after pose 25 on the ground truth (x = 2.5, 2.7, 2.9, ...): a pair is only
+  // kept within 10% of 0.5 m, and from a fast pose 0.5 m ahead is 0.4 or 0.6 m away.
+  // Kept: k = 0..20 (5 poses ahead), 22 (2.2 -> 2.7) and 24 (2.4 -> 2.9).
+  auto fast = gt;
+  for (size_t k = 26; k < fast.size(); ++k)
+    fast[k].world_from_cam.translation().x() = 2.5 + 0.2 * (k - 25.0);
+  rpe = ComputeRpe(fast, fast, metres);
+  REQUIRE(rpe.success);
+  CHECK(rpe.pairs == 23);
+
+  frames.delta = 2.5;
+  CHECK_THROWS_WITH(frames.Check(), Catch::Contains("whole number"));
+  frames.delta = 60;
+  rpe = ComputeRpe(gt, est, frames);
+  CHECK_FALSE(rpe.success);
+  CHECK_THAT(rpe.reason, Catch::Contains("60 frames apart among 51 poses matched"));
+}
+
+TEST_CASE("The sim3 scale applies to the RPE as well") {
+  const std::vector<StampedPose> gt = CurvyPath();
+  const std::vector<StampedPose> est = Similar(gt, Rigid3d::Identity(), 0.8);
+  EvaluationOptions o;
+  o.delta = 0.5;
+  CHECK(ComputeRpe(gt, est, o).trans_m.rmse > 0.01);
+  o.align = Alignment::kSim3;
+  const AteResult ate = ComputeAte(gt, est, o);
+  const RpeResult rpe = ComputeRpe(gt, est, o, ate.scale);
+  REQUIRE(rpe.success);
+  CHECK(rpe.trans_m.max < 1e-9);
+  CHECK(rpe.rot_deg.max < 1e-4);
+}
+
+TEST_CASE("Repeated timestamps count and match as in the file read back") {
+  // A run's poses stamped by depth time: two poses share a time. Read from a file only the last
+  // is kept; computed from memory it must be the same, not a second match of another ground
+  // truth pose 0.01 s away.
+  const auto gt = Sampled(30, 0.0, [](double t) { return Pose(0, {t, 0, 0}); });
+  std::vector<StampedPose> gt100;  // 100 Hz ground truth
+  for (int k = 0; k < 300; ++k) gt100.push_back({0.01 * k, Pose(0, {0.01 * k, 0, 0})});
+  std::vector<StampedPose> est = gt;
+  est.insert(est.begin() + 5, {est[5].timestamp, Pose(0, {9, 9, 9})});  // dropped: not the last
+  const AteResult ate = ComputeAte(gt100, est, {});
+  REQUIRE(ate.success);
+  CHECK(ate.matched == 30);
+  CHECK(ate.error_m.max < 1e-9);
+  std::vector<StampedPose> copy = est;
+  CHECK(KeepLastOfEachTime(&copy) == 1);
+  CHECK(copy.size() == 30);
 }

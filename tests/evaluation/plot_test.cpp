@@ -15,19 +15,6 @@ using namespace rgbdvo::test;
 
 namespace {
 
-// Width and height from a PNG's IHDR chunk; {0, 0} if the file is not a PNG.
-std::pair<int, int> PngSize(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char h[24] = {};
-  in.read(reinterpret_cast<char*>(h), 24);
-  const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (!in || !std::equal(sig, sig + 8, h)) return {0, 0};
-  auto be32 = [&](int at) {
-    return (h[at] << 24) | (h[at + 1] << 16) | (h[at + 2] << 8) | h[at + 3];
-  };
-  return {be32(16), be32(20)};
-}
-
 std::vector<StampedPose> Circle(double radius, const Rigid3d& world_from_path) {
   std::vector<StampedPose> out;
   for (int k = 0; k < 60; ++k) {
@@ -53,7 +40,7 @@ TEST_CASE("PlotTrajectory writes a PNG of the requested size with the aligned gr
   CHECK(r.aligned);
   CHECK(r.ate.matched == 60);
   CHECK(r.ate.error_m.rmse < 1e-9);  // gt is est moved rigidly
-  CHECK_THAT(r.Brief(), Catch::Contains("aligned on 60 poses"));
+  CHECK_THAT(r.Brief(), Catch::Contains("60 poses matched with ground truth"));
   CHECK(PngSize(png) == std::make_pair(options.width_px, options.height_px));
   // A drawn figure (axes, text, two paths) compresses to tens of kB; an empty canvas to ~5 kB.
   CHECK(std::filesystem::file_size(png) > 20000);
@@ -124,4 +111,21 @@ TEST_CASE("PlotTrajectory leaves no temporary files, also when gnuplot fails") {
   else
     unsetenv("TMPDIR");
   CHECK(std::filesystem::is_empty(tmp));
+}
+
+TEST_CASE("PlotTrajectory counts a repeated timestamp once, as rgbdvo eval reads the file") {
+  // A ground truth sampled twice as often as the estimate, and an estimate with two poses at one
+  // time (stamped by a depth image two colour frames share): the last one is kept, as when the
+  // file is read back, not matched a second time to the ground truth pose 0.01 s later.
+  const std::vector<StampedPose> est = Circle(1.0, Rigid3d::Identity());
+  std::vector<StampedPose> gt = est;
+  for (const StampedPose& p : est) gt.push_back({p.timestamp + 0.01, p.world_from_cam});
+  KeepLastOfEachTime(&gt);
+  std::vector<StampedPose> repeated = est;
+  repeated.insert(repeated.begin() + 10, {est[10].timestamp, Rigid3d::Identity()});
+  const PlotResult r = PlotTrajectory(repeated, gt, MakeTempDir("plot") + "/r.png", {});
+  CHECK(r.estimate_poses == 60);
+  CHECK(r.ate.matched == 60);
+  CHECK(r.ate.error_m.max < 1e-9);
+  CHECK_THAT(r.Brief(), Catch::Contains("estimate 60 poses, 60 poses matched"));
 }

@@ -21,7 +21,7 @@ struct PlotOptions {
 
 struct PlotResult {
   std::string png_path;
-  int estimate_poses = 0;
+  int estimate_poses = 0;     // one per timestamp (the last), as in the file read back
   int groundtruth_poses = 0;  // 0 when no ground truth was given
   bool aligned = false;       // ground truth drawn, aligned to the estimate by the ATE fit
   AteResult ate;              // the fit used for the alignment

@@ -32,6 +32,11 @@ struct Trajectory {
 // the last one is kept, as in the TUM tools.
 Trajectory ReadTrajectory(const std::string& path);
 
+// Sorts by time (stable) and keeps the last of poses with the same timestamp, as ReadTrajectory
+// does; returns how many were dropped. For poses that did not come from a file (a run's), so
+// that they count and match as the same trajectory read back would.
+int KeepLastOfEachTime(std::vector<StampedPose>* poses);
+
 // The pose part of a trajectory row, `tx ty tz qx qy qz qw` with `sep` between the fields,
 // fixed-point: 6 decimals for the position (micrometres), 7 for the unit quaternion. The
 // stream's format flags are left as they were.
