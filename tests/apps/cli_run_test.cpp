@@ -1,6 +1,7 @@
 // End-to-end tests of `rgbdvo run`: the real excerpt in data/ and bad input.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -418,4 +419,29 @@ TEST_CASE(
                      &out) == 0);
   CHECK_THAT(out, Catch::Contains("--out is deprecated") && Catch::Contains("--csv"));
   CHECK(Lines(dir + "/old.csv").size() == 4);  // header + 3 frames
+}
+
+TEST_CASE("rgbdvo run writes TUM trajectories a strict reader accepts: 8 numbers, ascending") {
+  // evo and the TUM tools refuse repeated or descending timestamps; in this excerpt 5 of the 30
+  // colour frames share their nearest depth frame with another, so depth stamps would repeat.
+  const std::string dir = MakeTempDir("cli_strict");
+  std::string out;
+  REQUIRE(RunCommand(RgbdvoExe() + " run " + SourceDir() + "/data/tum_fr1_xyz_first30 --calib " +
+                         SourceDir() + "/calib/tum_fr1.yaml --quiet --tum " + dir + "/t.txt",
+                     &out) == 0);
+  int poses = 0;
+  double last = -1;
+  for (const std::string& line : Lines(dir + "/t.txt")) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::vector<double> v;
+    for (std::string f; fields >> f;) v.push_back(std::stod(f));
+    REQUIRE(v.size() == 8);
+    for (double x : v) CHECK(std::isfinite(x));
+    CHECK(v[0] > last);
+    last = v[0];
+    CHECK(std::abs(std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]) - 1) < 1e-6);
+    ++poses;
+  }
+  CHECK(poses == 30);
 }
