@@ -7,7 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <opencv2/core.hpp>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,37 +22,188 @@ void Require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("calibration: " + what);
 }
 
-double ReadNumber(const cv::FileStorage& fs, const std::string& key, const std::string& path) {
-  const cv::FileNode node = fs[key];
-  if (node.empty() || (!node.isReal() && !node.isInt()))
-    throw std::runtime_error(path + ": missing or non-numeric field '" + key + "'");
-  return static_cast<double>(node);
+// The calibration file's YAML, read by its own small reader: the top-level "key: value" lines
+// and "key: !!opencv-matrix" blocks (rows, cols, dt, data: [ ... ] over one or more lines) that
+// SaveCalibration (OpenCV's writer) produces and a user edits. OpenCV's own YAML reader loops
+// forever on some malformed files (two found by tests/fuzz) and recurses without limit on
+// nesting; this one reads each line once and nests two levels at most.
+struct YamlNode {
+  int line = 0;                    // where it was defined, for messages
+  std::string scalar;              // a value (quotes removed)
+  bool quoted = false;             // the value was a "string"
+  std::vector<std::string> items;  // a [ ... ] list
+  bool is_list = false;
+  std::map<std::string, YamlNode> children;  // a block of indented "key: value" lines
+  bool is_map = false;
+};
+
+class CalibrationYaml {
+ public:
+  CalibrationYaml(const std::string& text, const std::string& path) : path_(path) {
+    std::istringstream in(text);
+    std::string raw;
+    YamlNode* block = nullptr;  // the top-level node whose indented lines follow
+    YamlNode* list = nullptr;   // an open [ ... ] continuing on the next lines
+    while (std::getline(in, raw)) {
+      ++line_;
+      const std::string content = StripComment(raw);
+      if (list) {
+        list_text_ += " " + content;
+        if (content.find(']') != std::string::npos) CloseList(list), list = nullptr;
+        continue;
+      }
+      const size_t indent = content.find_first_not_of(" \t");
+      if (indent == std::string::npos) continue;  // blank or comment only
+      if (line_ == 1 && content.rfind("%YAML", 0) == 0) continue;
+      if (content == "---") continue;
+      const size_t colon = content.find(':');
+      if (colon == std::string::npos) throw Error("expected 'key: value'");
+      const std::string key = Trim(content.substr(indent, colon - indent));
+      const std::string value = Trim(content.substr(colon + 1));
+      if (key.empty() || key.find_first_of(" \t\"'[]{}") != std::string::npos)
+        throw Error("bad key '" + key + "'");
+      std::map<std::string, YamlNode>* into = &top_;
+      if (indent > 0) {
+        if (!block) throw Error("indented line outside a matrix block");
+        into = &block->children;
+      } else {
+        block = nullptr;
+      }
+      if (into->count(key)) throw Error("'" + key + "' given twice");
+      YamlNode& node = (*into)[key];
+      node.line = line_;
+      if (value.rfind('[', 0) == 0) {
+        node.is_list = true;
+        list_text_ = value.substr(1);
+        if (value.find(']') != std::string::npos)
+          CloseList(&node);
+        else
+          list = &node;
+      } else if (indent == 0 && (value.empty() || value.rfind("!!", 0) == 0)) {
+        node.is_map = true;
+        block = &node;
+      } else {
+        ParseScalar(value, &node);
+      }
+    }
+    if (list) throw Error("unterminated '[' list (no ']')");
+  }
+
+  const YamlNode* Find(const std::string& key) const {
+    const auto it = top_.find(key);
+    return it == top_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  std::runtime_error Error(const std::string& what) const {
+    return std::runtime_error(path_ + ":" + std::to_string(line_) +
+                              ": not a calibration YAML file (" + what + ")");
+  }
+
+  // The line without a '#' comment (a '#' inside "quotes" is text) and without a trailing CR.
+  static std::string StripComment(const std::string& raw) {
+    bool in_quotes = false;
+    for (size_t i = 0; i < raw.size(); ++i) {
+      if (raw[i] == '\\' && in_quotes)
+        ++i;
+      else if (raw[i] == '"')
+        in_quotes = !in_quotes;
+      else if (raw[i] == '#' && !in_quotes && (i == 0 || raw[i - 1] == ' ' || raw[i - 1] == '\t'))
+        return raw.substr(0, i);
+    }
+    std::string s = raw;
+    if (!s.empty() && s.back() == '\r') s.pop_back();
+    return s;
+  }
+
+  void ParseScalar(const std::string& value, YamlNode* node) const {
+    if (value.empty() || value[0] != '"') {
+      if (value.find_first_of("[]{}\"") != std::string::npos)
+        throw Error("bad value '" + value + "'");
+      node->scalar = value;
+      return;
+    }
+    node->quoted = true;
+    size_t i = 1;
+    for (; i < value.size() && value[i] != '"'; ++i) {
+      if (value[i] == '\\' && i + 1 < value.size()) ++i;
+      node->scalar += value[i];
+    }
+    if (i >= value.size() || Trim(value.substr(i + 1)) != "") throw Error("bad quoted string");
+  }
+
+  void CloseList(YamlNode* node) {
+    const size_t close = list_text_.find(']');
+    if (Trim(list_text_.substr(close + 1)) != "") throw Error("text after ']'");
+    std::istringstream items(list_text_.substr(0, close));
+    for (std::string item; std::getline(items, item, ',');) {
+      item = Trim(item);
+      if (item.empty() || item.find_first_of("[{") != std::string::npos)
+        throw Error("bad list item '" + item + "'");
+      node->items.push_back(item);
+    }
+    list_text_.clear();
+  }
+
+  static std::string Trim(const std::string& s) {
+    const size_t b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+    return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+  }
+
+  std::string path_;
+  int line_ = 0;
+  std::string list_text_;
+  std::map<std::string, YamlNode> top_;
+};
+
+// The number a scalar holds (the whole text, finite or not: Check() judges the value), else
+// nullopt.
+std::optional<double> Number(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return std::nullopt;
+  return v;
 }
 
-// The values of an opencv-matrix field (rows, cols, dt, data), read one by one after its shape
-// is checked against the expected one: OpenCV's own reader allocates rows x cols as the file
-// claims before it looks at the data.
-std::vector<double> ReadMatrix(const cv::FileStorage& fs, const std::string& key, int rows,
-                               int cols, const std::string& path) {
+double ReadNumber(const CalibrationYaml& yaml, const std::string& key, const std::string& path) {
+  const YamlNode* node = yaml.Find(key);
+  std::optional<double> v;
+  if (node && !node->quoted && !node->is_map && !node->is_list) v = Number(node->scalar);
+  if (!v) throw std::runtime_error(path + ": missing or non-numeric field '" + key + "'");
+  return *v;
+}
+
+// The values of an opencv-matrix field (rows, cols, data), row-major, after its shape is checked
+// against the expected one (a 1x5 field may be written 5x1).
+std::vector<double> ReadMatrix(const YamlNode& node, const std::string& key, int rows, int cols,
+                               const std::string& path) {
   const std::string shape = std::to_string(rows) + "x" + std::to_string(cols);
-  const cv::FileNode node = fs[key];
   const auto fail = [&](const std::string& why) {
     return std::runtime_error(path + ": field '" + key + "' must be a " + shape +
                               " opencv-matrix (" + why + ")");
   };
-  if (!node.isMap()) throw fail("not a matrix");
-  const cv::FileNode r = node["rows"], c = node["cols"], data = node["data"];
-  if (!r.isInt() || !c.isInt()) throw fail("rows or cols missing");
-  const int file_rows = static_cast<int>(r), file_cols = static_cast<int>(c);
-  if (file_rows * int64_t{file_cols} != int64_t{rows} * cols ||
-      (file_rows != rows && file_rows != cols))
-    throw fail("it is " + std::to_string(file_rows) + "x" + std::to_string(file_cols));
-  if (!data.isSeq() || data.size() != static_cast<size_t>(rows) * cols)
+  if (!node.is_map) throw fail("not a matrix");
+  const auto integer = [&](const char* name) -> std::optional<double> {
+    const auto it = node.children.find(name);
+    if (it == node.children.end() || it->second.quoted) return std::nullopt;
+    const std::optional<double> v = Number(it->second.scalar);
+    if (!v || *v != std::floor(*v) || std::abs(*v) > 9e15) return std::nullopt;
+    return v;
+  };
+  const std::optional<double> r = integer("rows"), c = integer("cols");
+  if (!r || !c) throw fail("rows or cols missing");
+  if (*r * *c != double(rows) * cols || (*r != rows && *r != cols))
+    throw fail("it is " + std::to_string(int64_t(*r)) + "x" + std::to_string(int64_t(*c)));
+  const auto data = node.children.find("data");
+  if (data == node.children.end() || !data->second.is_list ||
+      data->second.items.size() != static_cast<size_t>(rows) * cols)
     throw fail("data must hold " + std::to_string(rows * cols) + " numbers");
   std::vector<double> values;
-  for (const cv::FileNode& v : data) {
-    if (!v.isReal() && !v.isInt()) throw fail("data must be numbers");
-    values.push_back(static_cast<double>(v));
+  for (const std::string& item : data->second.items) {
+    const std::optional<double> v = Number(item);
+    if (!v) throw fail("data must be numbers");
+    values.push_back(*v);
   }
   return values;
 }
@@ -81,8 +235,7 @@ Calibration LoadCalibration(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw std::runtime_error(path + ": cannot read calibration file");
-  // A calibration is text. OpenCV's YAML reader loops forever on some inputs with control bytes
-  // (a NUL in a 75-byte file, found by tests/fuzz), so they are refused before it sees them.
+  // A calibration is text: control bytes are refused before anything else.
   for (size_t i = 0; i < text.size(); ++i) {
     const auto byte = static_cast<unsigned char>(text[i]);
     if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') || byte == 0x7f) {
@@ -92,35 +245,31 @@ Calibration LoadCalibration(const std::string& path) {
                                std::to_string(i) + ")");
     }
   }
-  cv::FileStorage fs;
-  try {
-    fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(path + ": not a readable calibration YAML file (" + e.err + ")");
-  }
-  if (!fs.isOpened()) throw std::runtime_error(path + ": cannot open calibration file");
+  const CalibrationYaml yaml(text, path);
   Calibration c;
-  c.A = ReadNumber(fs, "A", path);
-  c.B = ReadNumber(fs, "B", path);
-  c.C = ReadNumber(fs, "C", path);
-  c.D = ReadNumber(fs, "D", path);
-  const std::vector<double> K = ReadMatrix(fs, "K_ir", 3, 3, path);  // row-major
+  c.A = ReadNumber(yaml, "A", path);
+  c.B = ReadNumber(yaml, "B", path);
+  c.C = ReadNumber(yaml, "C", path);
+  c.D = ReadNumber(yaml, "D", path);
+  const YamlNode* k_node = yaml.Find("K_ir");
+  if (!k_node) throw std::runtime_error(path + ": missing field 'K_ir'");
+  const std::vector<double> K = ReadMatrix(*k_node, "K_ir", 3, 3, path);  // row-major
   c.fx = K[0];
   c.fy = K[4];
   c.cx = K[2];
   c.cy = K[5];
-  if (!fs["dist_ir"].empty()) {
-    const std::vector<double> dist = ReadMatrix(fs, "dist_ir", 1, 5, path);  // or 5x1
+  if (const YamlNode* dist_node = yaml.Find("dist_ir")) {
+    const std::vector<double> dist = ReadMatrix(*dist_node, "dist_ir", 1, 5, path);  // or 5x1
     std::copy(dist.begin(), dist.end(), c.dist_ir.begin());
   }
-  c.min_depth_m = ReadNumber(fs, "min_depth_m", path);
-  c.max_depth_m = ReadNumber(fs, "max_depth_m", path);
-  if (!fs["depth_units_per_m"].empty()) {
-    c.depth_units_per_m = ReadNumber(fs, "depth_units_per_m", path);
+  c.min_depth_m = ReadNumber(yaml, "min_depth_m", path);
+  c.max_depth_m = ReadNumber(yaml, "max_depth_m", path);
+  if (yaml.Find("depth_units_per_m")) {
+    c.depth_units_per_m = ReadNumber(yaml, "depth_units_per_m", path);
     if (!(c.depth_units_per_m > 0))
       throw std::runtime_error(path + ": field 'depth_units_per_m' must be > 0");
   }
-  if (!fs["description"].empty()) c.description = static_cast<std::string>(fs["description"]);
+  if (const YamlNode* d = yaml.Find("description")) c.description = d->scalar;
   try {
     c.Check();
   } catch (const std::invalid_argument& e) {

@@ -4,9 +4,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <opencv2/core.hpp>
 #include <sstream>
 #include <stdexcept>
+
+#include "rgbdvo/sensor/calibration.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -15,11 +16,9 @@ namespace fs = std::filesystem;
 
 std::string DescriptionOf(const std::string& path) {
   try {
-    const cv::FileStorage file(path, cv::FileStorage::READ);
-    if (!file.isOpened() || file["description"].empty()) return "";
-    return static_cast<std::string>(file["description"]);
-  } catch (const cv::Exception&) {
-    return "";
+    return LoadCalibration(path).description;
+  } catch (const std::exception&) {
+    return "";  // listed all the same; using it will say what is wrong
   }
 }
 

@@ -145,3 +145,28 @@ TEST_CASE("A calibration file with control bytes is refused before OpenCV's pars
   std::ofstream(dir + "/crlf.yaml", std::ios::binary) << yaml;
   CHECK(LoadCalibration(dir + "/crlf.yaml").fx == 500);
 }
+
+TEST_CASE("Calibration files are read by their own reader: syntax errors name the line") {
+  const std::string dir = test::MakeTempDir("calib_syntax");
+  const std::string head = "%YAML:1.0\n---\nA: 1.\nB: 0.\nC: 1.\nD: 0.\n";
+  const std::string k =
+      "K_ir: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+      "   data: [ 500., 0., 320.,  # a comment\n       0., 500., 240., 0., 0., 1. ]\n";
+  const std::string tail = "min_depth_m: 0.4\nmax_depth_m: 8.\n";
+  const auto load = [&](const std::string& text) {
+    std::ofstream(dir + "/c.yaml") << text;
+    return LoadCalibration(dir + "/c.yaml");
+  };
+  // A list over two lines, a comment inside it, a quoted description with '#' and '"'.
+  const Calibration c = load(head + k + tail + "description: \"cam \\\"7\\\" # left\"\n");
+  CHECK(c.fx == 500);
+  CHECK(c.cy == 240);
+  CHECK(c.description == "cam \"7\" # left");
+  // An indented line with no matrix above it (OpenCV's reader looped forever on one such file).
+  CHECK_THROWS_WITH(load(head + "   rows: 3\n  4, -0.95 ]\n" + tail),
+                    Catch::Contains("c.yaml:7") && Catch::Contains("indented line"));
+  CHECK_THROWS_WITH(load(head + "K_ir: !!opencv-matrix\n   data: [ 1., 2.\n"),
+                    Catch::Contains("unterminated"));
+  CHECK_THROWS_WITH(load(head + "A: 2.\n" + k + tail), Catch::Contains("'A' given twice"));
+  CHECK_THROWS_WITH(load(head + "just text\n"), Catch::Contains("c.yaml:7"));
+}

@@ -1,8 +1,9 @@
 #pragma once
 // The camera calibration of paper section 2.1: the linear colour->IR mapping (eq. 1), the IR
-// (depth) camera intrinsics K_ir (eq. 2) and the usable depth range. Stored as YAML through
-// cv::FileStorage with top-level keys A, B, C, D, K_ir (3x3), min_depth_m, max_depth_m and the
-// optional dist_ir (1x5: k1 k2 p1 p2 k3) and depth_units_per_m.
+// (depth) camera intrinsics K_ir (eq. 2) and the usable depth range. Stored as YAML (written by
+// cv::FileStorage, read by a reader of its own) with top-level keys A, B, C, D, K_ir (3x3
+// opencv-matrix), min_depth_m, max_depth_m and the optional dist_ir (1x5: k1 k2 p1 p2 k3),
+// depth_units_per_m and description.
 
 #include <array>
 #include <string>
