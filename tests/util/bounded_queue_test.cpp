@@ -1,6 +1,7 @@
 #include "rgbdvo/util/bounded_queue.hpp"
 
 #include <catch2/catch.hpp>
+#include <optional>
 #include <thread>
 
 using namespace rgbdvo;
@@ -23,9 +24,11 @@ TEST_CASE("BoundedQueue::PushWait waits for room instead of dropping") {
   CHECK(q.PushWait(1, milliseconds(0)));
   CHECK(!q.PushWait(2, milliseconds(1)));  // full: times out, nothing dropped
   CHECK(q.dropped() == 0);
-  std::thread consumer([&] { CHECK(q.Pop(milliseconds(5000)) == 1); });
+  std::optional<int> taken;  // checked on this thread: Catch's assertions are not thread-safe
+  std::thread consumer([&] { taken = q.Pop(milliseconds(5000)); });
   CHECK(q.PushWait(3, milliseconds(5000)));  // room once the consumer took one
   consumer.join();
+  CHECK(taken == 1);
   CHECK(q.Pop(milliseconds(0)) == 3);
 }
 
