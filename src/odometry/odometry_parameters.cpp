@@ -117,7 +117,8 @@ bool OdometryParameter::IsBool() const {
 }
 
 std::string OdometryParameter::Get(const OdometryOptions& options) const {
-  O copy = options;
+  // `field` only names the member; nothing is written through it here, so no copy is needed.
+  O& named = const_cast<O&>(options);
   std::ostringstream s;
   s.precision(15);
   std::visit(
@@ -127,7 +128,7 @@ std::string OdometryParameter::Get(const OdometryOptions& options) const {
         else
           s << *value;
       },
-      field(copy));
+      field(named));
   return s.str();
 }
 
