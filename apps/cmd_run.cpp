@@ -1,4 +1,4 @@
-// `rgbdvo run FOLDER`: visual odometry over a recorded folder.
+// `rgbdvo run RECORDING`: visual odometry over a recorded folder or a ROS bag.
 #include <signal.h>
 #include <unistd.h>
 
@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "recording_input.hpp"
 #include "rgbdvo/evaluation/plot.hpp"
 #include "rgbdvo/pipeline/run.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
@@ -19,14 +20,13 @@ namespace rgbdvo::cli {
 namespace {
 
 struct RunArgs {
-  std::string folder, calib, plot;
+  RecordingArgs recording;
+  std::string plot;
   TrajectoryOutputs outputs;
   bool quiet = false, timing = false;
   int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
   RunOptions run;
-  SourceOptions source;
   FrameRange range;
-  bool depth_scale_given = false;
   std::unique_ptr<OdometryFlags> odometry_flags;
 };
 
@@ -41,27 +41,12 @@ int Run(const RunArgs& a) {
     std::cout << a.odometry_flags->DumpConfig() << std::flush;
     return 0;
   }
-  if (a.folder.empty()) throw CLI::RequiredError("folder");
-  if (a.calib.empty()) throw CLI::RequiredError("--calib");
+  if (a.recording.path.empty()) throw CLI::RequiredError("recording");
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
-  const std::string calib_path = FindCalibration(a.calib);
-  const Calibration calib = LoadCalibration(calib_path);
-  // The depth scale: --depth-scale, else the calibration's, else TUM's 5000.
-  SourceOptions source_options = a.source;
-  if (!a.depth_scale_given && calib.depth_units_per_m > 0)
-    source_options.tum.depth_units_per_m = calib.depth_units_per_m;
-  std::unique_ptr<FrameSource> recording = OpenRecording(a.folder, source_options);
-  if (auto* tum = dynamic_cast<TumSource*>(recording.get()); tum && !tum->unpaired().empty()) {
-    std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
-              << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
-              << " s (first: " << tum->unpaired().front().path << ")\n";
-  }
-  const auto source = std::make_unique<FrameRangeSource>(std::move(recording), a.range);
-  std::vector<std::string> inputs = {calib_path};
-  for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt",
-                           "INDEX.txt", "associations.txt"})
-    inputs.push_back((std::filesystem::path(a.folder) / name).string());
-  a.outputs.RefuseInputs(inputs);
+  Recording recording = OpenRecordingInput(a.recording);
+  const Calibration& calib = recording.calib;
+  const auto source = std::make_unique<FrameRangeSource>(std::move(recording.source), a.range);
+  a.outputs.RefuseInputs(recording.inputs);
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
   if (a.outputs.csv.empty() && a.outputs.tum.empty() && a.outputs.kitti.empty() && a.plot.empty())
@@ -74,7 +59,8 @@ int Run(const RunArgs& a) {
   if (!a.plot.empty()) writer_ptrs.push_back(&recorder);
 
   if (!a.quiet) {
-    PrintConfiguration(info, source->Describe(), calib_path, calib, odometry_options, a.run);
+    PrintConfiguration(info, source->Describe(), recording.calib_source, calib, odometry_options,
+                       a.run);
     info << std::flush;
   }
   LimitOpenCvThreads();
@@ -101,11 +87,11 @@ int Run(const RunArgs& a) {
   }
   if (a.timing) info << summary.Timing() << "\n" << summary.Matching() << std::endl;
   if (!a.plot.empty()) {  // with the folder's groundtruth.txt when it has one
-    const std::string gt_path = (std::filesystem::path(a.folder) / "groundtruth.txt").string();
     std::vector<StampedPose> gt;
-    if (std::filesystem::exists(gt_path)) gt = ReadTrajectory(gt_path).poses;
+    if (!recording.groundtruth.empty() && std::filesystem::exists(recording.groundtruth))
+      gt = ReadTrajectory(recording.groundtruth).poses;
     PlotOptions plot;
-    plot.title = "rgbdvo run " + a.folder;
+    plot.title = "rgbdvo run " + a.recording.path;
     info << PlotTrajectory(recorder.poses, gt, a.plot, plot).Brief() << std::endl;
   }
   return 0;
@@ -116,18 +102,11 @@ int Run(const RunArgs& a) {
 void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "run", "visual odometry over a recorded folder (TUM RGB-D or fakenect layout)");
+      "run", "visual odometry over a recording (TUM RGB-D or fakenect folder, or a ROS 1 bag)");
   // Required unless --dump-config (checked by Run).
-  cmd->add_option("folder", args->folder, "recording folder (required)");
-  AddCalibFlag(cmd, &args->calib, "calibration YAML (required)");
+  cmd->add_option("recording", args->recording.path, "recording folder or ROS bag file (required)");
+  args->recording.AddFlags(cmd);
   args->outputs.AddFlags(cmd);
-  cmd->add_option("--depth-scale", args->source.tum.depth_units_per_m,
-                  "TUM depth units per metre (default: the calibration's depth_units_per_m, else "
-                  "5000)")
-      ->capture_default_str()
-      ->each([args](const std::string&) { args->depth_scale_given = true; });
-  cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")
-      ->capture_default_str();
   cmd->add_option("--start", args->range.start,
                   "first frame (colour-depth pair, counted from 0); rows keep the recording's "
                   "frame numbers")

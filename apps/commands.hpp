@@ -16,6 +16,7 @@ void AddPlotCommand(CLI::App& app);
 void AddCaptureCommand(CLI::App& app);
 void AddSynthKinectCommand(CLI::App& app);
 void AddCalibrationsCommand(CLI::App& app);
+void AddInfoCommand(CLI::App& app);
 
 // --calib: a calibration file or the name of one (FindCalibration gives the file).
 CLI::Option* AddCalibFlag(CLI::App* cmd, std::string* path, const std::string& help);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   rgbdvo::cli::AddCaptureCommand(app);
   rgbdvo::cli::AddSynthKinectCommand(app);
   rgbdvo::cli::AddCalibrationsCommand(app);
+  rgbdvo::cli::AddInfoCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

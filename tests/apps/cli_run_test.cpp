@@ -402,8 +402,8 @@ TEST_CASE("rgbdvo run: bad flag values are usage errors, bad configuration files
   CHECK(RunCommand(RgbdvoExe() + " run --dump-config --ratio abc", &out) == 2);
   CHECK_THAT(out, Catch::Contains("matching.ratio"));
   CHECK(RunCommand(RgbdvoExe() + " run --dump-config --mutual --no-mutual", &out) == 2);
-  CHECK(RunCommand(RgbdvoExe() + " run --calib tum_fr1", &out) == 2);  // no folder
-  CHECK_THAT(out, Catch::Contains("folder"));
+  CHECK(RunCommand(RgbdvoExe() + " run --calib tum_fr1", &out) == 2);  // no recording
+  CHECK_THAT(out, Catch::Contains("recording"));
   std::ofstream(dir + "/bad.cfg") << "ransac.max_trials = 50\nransac.trails = 5\n";
   CHECK(RunCommand(RgbdvoExe() + " run --dump-config --config " + dir + "/bad.cfg", &out) == 1);
   CHECK_THAT(out, Catch::Contains(dir + "/bad.cfg:2") && Catch::Contains("ransac.trails"));

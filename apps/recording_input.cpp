@@ -1,0 +1,108 @@
+#include "recording_input.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "commands.hpp"
+#include "rgbdvo/sensor/calibration_catalog.hpp"
+#ifdef RGBDVO_WITH_ROSBAG
+#include "rgbdvo/sources/rosbag_source.hpp"
+#endif
+
+namespace rgbdvo::cli {
+
+void RecordingArgs::AddFlags(CLI::App* cmd) {
+  AddCalibFlag(cmd, &calib,
+               "calibration YAML (required for folders; a bag's camera_info when not given)");
+  cmd->add_option("--depth-scale", source.tum.depth_units_per_m,
+                  "TUM depth units per metre (default: the calibration's depth_units_per_m, else "
+                  "5000; bags: from the encoding)")
+      ->capture_default_str()
+      ->each([this](const std::string&) { depth_scale_given = true; });
+  cmd->add_option("--max-dt", source.tum.max_time_diff_s, "max rgb-depth time difference, s")
+      ->capture_default_str();
+  cmd->add_option("--rgb-topic", rgb_topic, "ROS bag: colour sensor_msgs/Image topic")
+      ->capture_default_str();
+  cmd->add_option("--depth-topic", depth_topic,
+                  "ROS bag: depth sensor_msgs/Image topic (16UC1 mm or 32FC1 m)")
+      ->capture_default_str();
+  cmd->add_option("--rgb-info-topic", rgb_info_topic, "ROS bag: colour sensor_msgs/CameraInfo")
+      ->capture_default_str();
+  cmd->add_option("--depth-info-topic", depth_info_topic,
+                  "ROS bag: depth sensor_msgs/CameraInfo (used first)")
+      ->capture_default_str();
+}
+
+bool IsRosbagFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[13] = {};
+  return in.read(magic, sizeof magic) && std::string(magic, sizeof magic) == "#ROSBAG V2.0\n";
+}
+
+namespace {
+
+Recording OpenBag(const RecordingArgs& args) {
+#ifdef RGBDVO_WITH_ROSBAG
+  RosbagSourceOptions options;
+  options.rgb_topic = args.rgb_topic;
+  options.depth_topic = args.depth_topic;
+  options.rgb_info_topic = args.rgb_info_topic;
+  options.depth_info_topic = args.depth_info_topic;
+  options.max_time_diff_s = args.source.tum.max_time_diff_s;
+  auto bag = std::make_unique<RosbagSource>(args.path, options);
+  Recording r;
+  r.inputs = {args.path};
+  if (!args.calib.empty()) {
+    r.calib_source = FindCalibration(args.calib);
+    r.calib = LoadCalibration(r.calib_source);
+    r.inputs.push_back(r.calib_source);
+  } else if (const std::optional<Calibration> info = bag->CameraInfoCalibration()) {
+    r.calib = *info;
+    r.calib_source = info->description + " (registered depth: identity colour->depth mapping)";
+  } else {
+    throw std::runtime_error(args.path + ": no camera_info on " + args.depth_info_topic + " or " +
+                             args.rgb_info_topic + "; give the camera with --calib");
+  }
+  r.source = std::move(bag);
+  return r;
+#else
+  throw std::runtime_error(args.path +
+                           ": a ROS bag, but this rgbdvo was built without ROS bag support "
+                           "(install librosbag-storage-dev and libsensor-msgs-dev, rebuild)");
+#endif
+}
+
+}  // namespace
+
+Recording OpenRecordingInput(const RecordingArgs& args) {
+  if (!std::filesystem::exists(args.path))
+    throw std::runtime_error(args.path + ": no such folder or file");
+  if (IsRosbagFile(args.path)) return OpenBag(args);
+  if (!std::filesystem::is_directory(args.path))
+    throw std::runtime_error(args.path +
+                             ": neither a recording folder nor a ROS 1 bag (no '#ROSBAG V2.0' "
+                             "header)");
+  if (args.calib.empty()) throw CLI::RequiredError("--calib");
+  Recording r;
+  r.calib_source = FindCalibration(args.calib);
+  r.calib = LoadCalibration(r.calib_source);
+  // The depth scale: --depth-scale, else the calibration's, else TUM's 5000.
+  SourceOptions source_options = args.source;
+  if (!args.depth_scale_given && r.calib.depth_units_per_m > 0)
+    source_options.tum.depth_units_per_m = r.calib.depth_units_per_m;
+  r.source = OpenRecording(args.path, source_options);
+  if (auto* tum = dynamic_cast<TumSource*>(r.source.get()); tum && !tum->unpaired().empty()) {
+    std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
+              << " rgb frames without a depth frame within " << args.source.tum.max_time_diff_s
+              << " s (first: " << tum->unpaired().front().path << ")\n";
+  }
+  r.inputs = {r.calib_source};
+  for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt",
+                           "INDEX.txt", "associations.txt"})
+    r.inputs.push_back((std::filesystem::path(args.path) / name).string());
+  r.groundtruth = (std::filesystem::path(args.path) / "groundtruth.txt").string();
+  return r;
+}
+
+}  // namespace rgbdvo::cli
