@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "rgbdvo/sensor/calibration_catalog.hpp"
+#include "rgbdvo/sources/association_file.hpp"
 #ifdef RGBDVO_WITH_ROSBAG
 #include "rgbdvo/sources/rosbag_source.hpp"
 #endif
@@ -79,10 +80,12 @@ Recording OpenRecordingInput(const RecordingArgs& args) {
   if (!std::filesystem::exists(args.path))
     throw std::runtime_error(args.path + ": no such folder or file");
   if (IsRosbagFile(args.path)) return OpenBag(args);
-  if (!std::filesystem::is_directory(args.path))
+  const bool is_file = !std::filesystem::is_directory(args.path);
+  if (is_file && !IsAssociationFile(args.path))
     throw std::runtime_error(args.path +
-                             ": neither a recording folder nor a ROS 1 bag (no '#ROSBAG V2.0' "
-                             "header)");
+                             ": neither a recording folder, a ROS 1 bag (no '#ROSBAG V2.0' "
+                             "header) nor an association file ('t_rgb rgb_path t_depth "
+                             "depth_path' lines)");
   if (args.calib.empty()) throw CLI::RequiredError("--calib");
   Recording r;
   r.calib_source = FindCalibration(args.calib);
@@ -97,11 +100,13 @@ Recording OpenRecordingInput(const RecordingArgs& args) {
               << " rgb frames without a depth frame within " << args.source.tum.max_time_diff_s
               << " s (first: " << tum->unpaired().front().path << ")\n";
   }
-  r.inputs = {r.calib_source};
+  r.inputs = {r.calib_source, args.path};
+  const std::filesystem::path folder =
+      is_file ? std::filesystem::path(args.path).parent_path() : std::filesystem::path(args.path);
   for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt",
                            "INDEX.txt", "associations.txt"})
-    r.inputs.push_back((std::filesystem::path(args.path) / name).string());
-  r.groundtruth = (std::filesystem::path(args.path) / "groundtruth.txt").string();
+    r.inputs.push_back((folder / name).string());
+  r.groundtruth = (folder / "groundtruth.txt").string();
   return r;
 }
 

@@ -208,6 +208,68 @@ std::vector<double> ReadMatrix(const YamlNode& node, const std::string& key, int
   return values;
 }
 
+// The calibration file's own fields (SaveCalibration's layout).
+Calibration FromCalibrationFields(const CalibrationYaml& yaml, const std::string& path) {
+  Calibration c;
+  c.A = ReadNumber(yaml, "A", path);
+  c.B = ReadNumber(yaml, "B", path);
+  c.C = ReadNumber(yaml, "C", path);
+  c.D = ReadNumber(yaml, "D", path);
+  const YamlNode* k_node = yaml.Find("K_ir");
+  if (!k_node) throw std::runtime_error(path + ": missing field 'K_ir'");
+  const std::vector<double> K = ReadMatrix(*k_node, "K_ir", 3, 3, path);  // row-major
+  c.fx = K[0];
+  c.fy = K[4];
+  c.cx = K[2];
+  c.cy = K[5];
+  if (const YamlNode* dist_node = yaml.Find("dist_ir")) {
+    const std::vector<double> dist = ReadMatrix(*dist_node, "dist_ir", 1, 5, path);  // or 5x1
+    std::copy(dist.begin(), dist.end(), c.dist_ir.begin());
+  }
+  c.min_depth_m = ReadNumber(yaml, "min_depth_m", path);
+  c.max_depth_m = ReadNumber(yaml, "max_depth_m", path);
+  if (yaml.Find("depth_units_per_m")) {
+    c.depth_units_per_m = ReadNumber(yaml, "depth_units_per_m", path);
+    if (!(c.depth_units_per_m > 0))
+      throw std::runtime_error(path + ": field 'depth_units_per_m' must be > 0");
+  }
+  if (const YamlNode* d = yaml.Find("description")) c.description = d->scalar;
+  return c;
+}
+
+// A ROS camera_info YAML file (as camera_calibration and camera_info_manager write it):
+// camera_matrix, distortion_model and distortion_coefficients; the depth registered to this
+// camera (the identity mapping), the default depth range unless min_depth_m/max_depth_m are
+// added.
+Calibration FromCameraInfo(const CalibrationYaml& yaml, const std::string& path) {
+  Calibration c;
+  const std::vector<double> K =
+      ReadMatrix(*yaml.Find("camera_matrix"), "camera_matrix", 3, 3, path);
+  c.fx = K[0], c.fy = K[4], c.cx = K[2], c.cy = K[5];
+  const YamlNode* model = yaml.Find("distortion_model");
+  const std::string name = model ? model->scalar : "plumb_bob";
+  if (name != "plumb_bob" && name != "rational_polynomial")
+    throw std::runtime_error(path + ": distortion_model '" + name +
+                             "' not supported (plumb_bob, rational_polynomial)");
+  if (const YamlNode* d = yaml.Find("distortion_coefficients")) {
+    const auto data = d->children.find("data");
+    if (!d->is_map || data == d->children.end() || !data->second.is_list)
+      throw std::runtime_error(path + ": field 'distortion_coefficients' must have a data list");
+    const std::vector<std::string>& items = data->second.items;
+    for (size_t i = 0; i < std::min<size_t>(5, items.size()); ++i) {
+      const std::optional<double> v = Number(items[i]);
+      if (!v) throw std::runtime_error(path + ": distortion_coefficients must be numbers");
+      c.dist_ir[i] = *v;  // k1 k2 p1 p2 k3: the first five of both models
+    }
+  }
+  if (yaml.Find("min_depth_m")) c.min_depth_m = ReadNumber(yaml, "min_depth_m", path);
+  if (yaml.Find("max_depth_m")) c.max_depth_m = ReadNumber(yaml, "max_depth_m", path);
+  const YamlNode* camera = yaml.Find("camera_name");
+  c.description = "ROS camera_info" + (camera ? " of " + camera->scalar : std::string()) +
+                  " (depth registered to it: identity colour->depth mapping)";
+  return c;
+}
+
 }  // namespace
 
 void Calibration::Check() const {
@@ -247,29 +309,11 @@ Calibration LoadCalibration(const std::string& path) {
   }
   const CalibrationYaml yaml(text, path);
   Calibration c;
-  c.A = ReadNumber(yaml, "A", path);
-  c.B = ReadNumber(yaml, "B", path);
-  c.C = ReadNumber(yaml, "C", path);
-  c.D = ReadNumber(yaml, "D", path);
-  const YamlNode* k_node = yaml.Find("K_ir");
-  if (!k_node) throw std::runtime_error(path + ": missing field 'K_ir'");
-  const std::vector<double> K = ReadMatrix(*k_node, "K_ir", 3, 3, path);  // row-major
-  c.fx = K[0];
-  c.fy = K[4];
-  c.cx = K[2];
-  c.cy = K[5];
-  if (const YamlNode* dist_node = yaml.Find("dist_ir")) {
-    const std::vector<double> dist = ReadMatrix(*dist_node, "dist_ir", 1, 5, path);  // or 5x1
-    std::copy(dist.begin(), dist.end(), c.dist_ir.begin());
+  if (!yaml.Find("K_ir") && yaml.Find("camera_matrix")) {
+    c = FromCameraInfo(yaml, path);
+  } else {
+    c = FromCalibrationFields(yaml, path);
   }
-  c.min_depth_m = ReadNumber(yaml, "min_depth_m", path);
-  c.max_depth_m = ReadNumber(yaml, "max_depth_m", path);
-  if (yaml.Find("depth_units_per_m")) {
-    c.depth_units_per_m = ReadNumber(yaml, "depth_units_per_m", path);
-    if (!(c.depth_units_per_m > 0))
-      throw std::runtime_error(path + ": field 'depth_units_per_m' must be > 0");
-  }
-  if (const YamlNode* d = yaml.Find("description")) c.description = d->scalar;
   try {
     c.Check();
   } catch (const std::invalid_argument& e) {

@@ -77,9 +77,16 @@ TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
                              std::to_string(options_.max_time_diff_s) + " s)");
 }
 
+TumSource::TumSource(const std::string& folder, std::vector<TumPair> pairs,
+                     const std::string& origin, const TumSourceOptions& options)
+    : folder_(folder), origin_(origin), options_(options), pairs_(std::move(pairs)) {
+  options_.Check();
+  if (pairs_.empty()) throw std::runtime_error(origin + ": empty sequence (no pair)");
+}
+
 std::optional<Frame> TumSource::Next() {
   if (next_ >= pairs_.size()) return std::nullopt;
-  const Pair& p = pairs_[next_];
+  const TumPair& p = pairs_[next_];
   const std::string rgb_path = (fs::path(folder_) / p.rgb.path).string();
   const std::string depth_path = (fs::path(folder_) / p.depth.path).string();
   Frame f;
@@ -114,6 +121,11 @@ bool TumSource::Skip() {
 
 std::string TumSource::Describe() const {
   std::ostringstream s;
+  if (!origin_.empty()) {
+    s << "association file " << origin_ << ": " << pairs_.size() << " rgb-depth pairs as given, "
+      << "depth " << options_.depth_units_per_m << " units per metre";
+    return s.str();
+  }
   s << "TUM RGB-D folder " << folder_ << ": " << pairs_.size() << " rgb-depth pairs within "
     << options_.max_time_diff_s << " s, " << unpaired_.size() << " rgb frames without depth, "
     << "depth " << options_.depth_units_per_m << " units per metre";

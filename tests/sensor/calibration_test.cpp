@@ -170,3 +170,38 @@ TEST_CASE("Calibration files are read by their own reader: syntax errors name th
   CHECK_THROWS_WITH(load(head + "A: 2.\n" + k + tail), Catch::Contains("'A' given twice"));
   CHECK_THROWS_WITH(load(head + "just text\n"), Catch::Contains("c.yaml:7"));
 }
+
+TEST_CASE("A ROS camera_info YAML file is read as the camera of registered depth") {
+  const std::string dir = test::MakeTempDir("camera_info");
+  // As ROS's camera_calibration writes it (ost.yaml), with an 8-coefficient model.
+  const std::string path = dir + "/rgb.yaml";
+  std::ofstream(path) << "image_width: 640\nimage_height: 480\ncamera_name: rgb_A00362\n"
+                         "camera_matrix:\n  rows: 3\n  cols: 3\n"
+                         "  data: [517.3, 0, 318.6, 0, 516.5, 255.3, 0, 0, 1]\n"
+                         "distortion_model: rational_polynomial\n"
+                         "distortion_coefficients:\n  rows: 1\n  cols: 8\n"
+                         "  data: [0.2624, -0.9531, -0.0054, 0.0026, 1.1633, 0, 0, 0]\n"
+                         "rectification_matrix:\n  rows: 3\n  cols: 3\n"
+                         "  data: [1, 0, 0,\n         0, 1, 0,\n         0, 0, 1]\n"
+                         "projection_matrix:\n  rows: 3\n  cols: 4\n"
+                         "  data: [517.3, 0, 318.6, 0, 0, 516.5, 255.3, 0, 0, 0, 1, 0]\n";
+  const Calibration c = LoadCalibration(path);
+  CHECK(c.fx == 517.3);
+  CHECK(c.fy == 516.5);
+  CHECK(c.cx == 318.6);
+  CHECK(c.cy == 255.3);
+  CHECK(c.dist_ir == std::array<double, 5>{0.2624, -0.9531, -0.0054, 0.0026, 1.1633});
+  CHECK((c.A == 1 && c.B == 0 && c.C == 1 && c.D == 0));
+  CHECK(c.min_depth_m == Calibration().min_depth_m);
+  CHECK_THAT(c.description, Catch::Contains("rgb_A00362"));
+
+  std::ofstream(dir + "/fisheye.yaml")
+      << "camera_matrix:\n  rows: 3\n  cols: 3\n  data: [500, 0, 320, 0, 500, 240, 0, 0, 1]\n"
+         "distortion_model: equidistant\n";
+  CHECK_THROWS_WITH(LoadCalibration(dir + "/fisheye.yaml"),
+                    Catch::Contains("fisheye.yaml") && Catch::Contains("equidistant"));
+  std::ofstream(dir + "/bad_k.yaml") << "camera_matrix:\n  rows: 3\n  cols: 3\n  data: [500, 0]\n";
+  CHECK_THROWS_WITH(LoadCalibration(dir + "/bad_k.yaml"),
+                    Catch::Contains("bad_k.yaml") && Catch::Contains("camera_matrix"));
+  std::filesystem::remove_all(dir);
+}

@@ -3,7 +3,9 @@
 // (depth) camera intrinsics K_ir (eq. 2) and the usable depth range. Stored as YAML (written by
 // cv::FileStorage, read by a reader of its own) with top-level keys A, B, C, D, K_ir (3x3
 // opencv-matrix), min_depth_m, max_depth_m and the optional dist_ir (1x5: k1 k2 p1 p2 k3),
-// depth_units_per_m and description.
+// depth_units_per_m and description. LoadCalibration also reads a ROS camera_info YAML file
+// (camera_matrix, distortion_model, distortion_coefficients: a camera calibrated with ROS's
+// camera_calibration), as the camera of registered depth: the identity mapping.
 
 #include <array>
 #include <string>

@@ -20,6 +20,11 @@ struct TumListEntry {
   std::string path;  // relative to the folder
 };
 
+// A colour image and the depth image it is paired with.
+struct TumPair {
+  TumListEntry rgb, depth;
+};
+
 // Reads rgb.txt / depth.txt style lists: '#' comments and blank lines skipped, CRLF tolerated.
 // Throws std::runtime_error naming the file and line for unreadable files or malformed lines.
 std::vector<TumListEntry> ReadTumList(const std::string& path);
@@ -31,6 +36,10 @@ class TumSource : public FrameSource {
  public:
   // Throws std::runtime_error naming the missing folder or list file, or an empty sequence.
   TumSource(const std::string& folder, const TumSourceOptions& options);
+  // The pairs as given (an association file's, association_file.hpp), paths relative to
+  // `folder`; `origin` names where they came from (for Describe). Throws for an empty list.
+  TumSource(const std::string& folder, std::vector<TumPair> pairs, const std::string& origin,
+            const TumSourceOptions& options);
   std::optional<Frame> Next() override;
   std::string Describe() const override;
   bool Skip() override;
@@ -41,12 +50,10 @@ class TumSource : public FrameSource {
   const std::vector<TumListEntry>& unpaired() const { return unpaired_; }
 
  private:
-  struct Pair {
-    TumListEntry rgb, depth;
-  };
   std::string folder_;
+  std::string origin_;  // an association file, or empty: rgb.txt and depth.txt
   TumSourceOptions options_;
-  std::vector<Pair> pairs_;
+  std::vector<TumPair> pairs_;
   std::vector<TumListEntry> unpaired_;
   size_t next_ = 0;
 };
