@@ -32,6 +32,7 @@ struct BagLayout {
   double depth_time_shift_s = 0;
   bool camera_info = true;
   size_t frames = 30;  // the excerpt's first colour and depth images
+  bool half_size_depth = false;
   // Called with each colour message's index before it is written (to spoil one).
   std::function<void(int, sensor_msgs::Image*)> edit_color;
 };
@@ -87,6 +88,7 @@ std::string WriteBag(const std::string& path, const BagLayout& layout = {}) {
         raw.convertTo(pixels, CV_16U, 1000.0 / 5000.0);
       else
         raw.convertTo(pixels, CV_32F, 1.0 / 5000.0);  // as the folder reader scales it
+      if (layout.half_size_depth) cv::resize(pixels, pixels, {}, 0.5, 0.5, cv::INTER_NEAREST);
       const sensor_msgs::Image m = ImageMessage(pixels, layout.depth_encoding, item.t);
       bag.write("/camera/depth/image", m.header.stamp, m);
     }
@@ -208,6 +210,15 @@ TEST_CASE("Bad bags: one line naming the file, topic or message, and rows alread
     const std::string out = Run("run " + bag + " --calib tum_fr1", &code);
     CHECK(code == 1);
     CHECK_THAT(out, Catch::Contains("within"));
+  }
+  SECTION("depth of another size than colour") {
+    BagLayout layout = small;
+    layout.half_size_depth = true;
+    const std::string bag = WriteBag(dir + "/half.bag", layout);
+    const std::string out = Run("run " + bag + " --calib tum_fr1", &code);
+    CHECK(code == 1);
+    CHECK_THAT(out, Catch::Contains("/camera/depth/image") && Catch::Contains("320x240") &&
+                        Catch::Contains("640x480"));
   }
   SECTION("no camera_info and no --calib") {
     BagLayout layout = small;
