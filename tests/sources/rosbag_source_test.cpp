@@ -33,6 +33,7 @@ struct BagLayout {
   bool camera_info = true;
   size_t frames = 30;  // the excerpt's first colour and depth images
   bool half_size_depth = false;
+  rosbag::compression::CompressionType compression = rosbag::compression::Uncompressed;
   // Called with each colour message's index before it is written (to spoil one).
   std::function<void(int, sensor_msgs::Image*)> edit_color;
 };
@@ -64,6 +65,7 @@ std::string WriteBag(const std::string& path, const BagLayout& layout = {}) {
     items.push_back({depth[i].timestamp + layout.depth_time_shift_s, false, int(i)});
   std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.t < b.t; });
   rosbag::Bag bag(path, rosbag::bagmode::Write);
+  bag.setCompression(layout.compression);
   if (layout.camera_info) {
     sensor_msgs::CameraInfo info;
     info.header.stamp = ros::Time(items.front().t);
@@ -132,9 +134,11 @@ TEST_CASE("A bag of the excerpt gives the folder's frames: same pairs, stamps an
   CHECK(calib->D == 0);
 }
 
-TEST_CASE("A bag's 16UC1 depth is read as millimetres") {
+TEST_CASE("A bag's 16UC1 depth is read as millimetres, from compressed chunks too") {
   BagLayout layout;
   layout.depth_encoding = "16UC1";
+  layout.compression = GENERATE(rosbag::compression::Uncompressed, rosbag::compression::BZ2,
+                                rosbag::compression::LZ4);
   layout.frames = 2;
   const ScopedTempDir dir("rgbdvo_test_bag16_");
   const std::string bag = WriteBag(dir.path() + "/x.bag", layout);
