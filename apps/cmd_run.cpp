@@ -19,7 +19,7 @@ namespace rgbdvo::cli {
 namespace {
 
 struct RunArgs {
-  std::string folder, calib, plot;
+  std::string folder, calib, plot, pairing = "nearest";
   TrajectoryOutputs outputs;
   bool quiet = false, timing = false;
   int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
@@ -36,6 +36,25 @@ struct PoseRecorder : TrajectoryWriter {
   void Write(const FrameResult& r) override { poses.push_back({r.timestamp, r.world_from_cam}); }
 };
 
+// One line on stderr when colour frames found no depth frame (of their own, one to one).
+void ReportUnpaired(const FrameSource& recording, const SourceOptions& options) {
+  const bool one_to_one = options.tum.pairing == Pairing::kOneToOne;
+  size_t unpaired = 0;
+  double window = options.tum.max_time_diff_s;
+  std::string first;
+  if (auto* tum = dynamic_cast<const TumSource*>(&recording); tum && !tum->unpaired().empty()) {
+    unpaired = tum->unpaired().size();
+    first = " (first: " + tum->unpaired().front().path + ")";
+  } else if (auto* fakenect = dynamic_cast<const FakenectSource*>(&recording)) {
+    unpaired = static_cast<size_t>(fakenect->unpaired());
+    window = options.fakenect.max_time_diff_s;
+  }
+  if (unpaired == 0) return;
+  std::cerr << "rgbdvo: skipping " << unpaired << " rgb frames without a depth frame "
+            << (one_to_one ? "of their own " : "") << "within " << window << " s"
+            << (one_to_one ? ", one-to-one pairing" : "") << first << "\n";
+}
+
 int Run(const RunArgs& a) {
   if (a.odometry_flags->dump_requested()) {
     std::cout << a.odometry_flags->DumpConfig() << std::flush;
@@ -50,12 +69,9 @@ int Run(const RunArgs& a) {
   SourceOptions source_options = a.source;
   if (!a.depth_scale_given && calib.depth_units_per_m > 0)
     source_options.tum.depth_units_per_m = calib.depth_units_per_m;
+  source_options.tum.pairing = source_options.fakenect.pairing = ParsePairing(a.pairing);
   std::unique_ptr<FrameSource> recording = OpenRecording(a.folder, source_options);
-  if (auto* tum = dynamic_cast<TumSource*>(recording.get()); tum && !tum->unpaired().empty()) {
-    std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
-              << " rgb frames without a depth frame within " << a.source.tum.max_time_diff_s
-              << " s (first: " << tum->unpaired().front().path << ")\n";
-  }
+  ReportUnpaired(*recording, source_options);
   const auto source = std::make_unique<FrameRangeSource>(std::move(recording), a.range);
   std::vector<std::string> inputs = {calib_path};
   for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt",
@@ -128,6 +144,7 @@ void AddRunCommand(CLI::App& app) {
       ->each([args](const std::string&) { args->depth_scale_given = true; });
   cmd->add_option("--max-dt", args->source.tum.max_time_diff_s, "max rgb-depth time difference, s")
       ->capture_default_str();
+  AddPairingFlag(cmd, &args->pairing);
   cmd->add_option("--start", args->range.start,
                   "first frame (colour-depth pair, counted from 0); rows keep the recording's "
                   "frame numbers")

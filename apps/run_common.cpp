@@ -29,6 +29,16 @@ void TrajectoryOutputs::AddFlags(CLI::App* cmd) {
                   "= standard output)");
 }
 
+void AddPairingFlag(CLI::App* cmd, std::string* pairing) {
+  cmd->add_option("--pairing", *pairing,
+                  "colour-depth pairing: nearest (each colour image takes the nearest depth "
+                  "image; two can share one) or one-to-one (as the TUM tools' associate.py: "
+                  "closest pairs first, each image used once; a colour image left without depth "
+                  "is dropped)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"nearest", "one-to-one"}));
+}
+
 std::vector<std::unique_ptr<TrajectoryWriter>> TrajectoryOutputs::Open() const {
   std::vector<std::unique_ptr<TrajectoryWriter>> writers;
   if (!csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(csv));

@@ -31,6 +31,9 @@ struct TrajectoryOutputs {
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
 };
 
+// --pairing into *pairing ("nearest" or "one-to-one", as ParsePairing takes it).
+void AddPairingFlag(CLI::App* cmd, std::string* pairing);
+
 // The hidden --debug-frame-delay-ms into *ms (for tests: an odometry that much slower), and the
 // sleep it asks for after each frame.
 void AddFrameDelayFlag(CLI::App* cmd, int* ms);
