@@ -22,7 +22,8 @@ namespace rgbdvo::cli {
 
 struct TrajectoryOutputs {
   std::string csv, tum, kitti;
-  void AddFlags(CLI::App* cmd);  // --out, --tum, --kitti
+  std::string stamp = "color";   // --stamp, as ParseStampTime takes it
+  void AddFlags(CLI::App* cmd);  // --csv (--out), --tum, --kitti, --stamp
   // Throws naming the file when an output is one of `inputs` (existing files; others are
   // ignored) or both outputs are the same file: writing would destroy what the run reads.
   void RefuseInputs(const std::vector<std::string>& inputs) const;
