@@ -38,7 +38,7 @@ namespace rgbdvo::cli {
 namespace {
 
 struct CaptureArgs {
-  std::string calib;
+  std::string calib, pairing = "nearest";
   TrajectoryOutputs outputs;
   bool quiet = false, no_drop = false, no_accel = false;
   int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
@@ -61,6 +61,7 @@ int Capture(CaptureArgs& a) {
   a.kinect.drop_when_behind = !a.no_drop;
   a.kinect.record_accel = !a.no_accel;
   a.kinect.stop = &StopOnSignals::Flag();
+  a.kinect.pairing = ParsePairing(a.pairing);
   a.kinect.Check();
   // Read no further ahead than the workers need: a backlog then waits in the source's queue,
   // where the oldest pair is dropped and counted (the newest frame wins).
@@ -130,6 +131,7 @@ void AddCaptureCommand(CLI::App& app) {
   args->outputs.AddFlags(cmd);
   cmd->add_option("--max-dt", args->kinect.max_time_diff_s, "max colour-depth time difference, s")
       ->capture_default_str();
+  AddPairingFlag(cmd, &args->pairing);
   cmd->add_option("--queue", args->kinect.queue_capacity,
                   "frames waiting for the odometry; when full the oldest is dropped")
       ->capture_default_str();

@@ -30,10 +30,12 @@ struct RunArgs {
   std::unique_ptr<OdometryFlags> odometry_flags;
 };
 
-// Keeps the poses in memory for --plot.
+// Keeps the poses in memory for --plot, stamped as the files are.
 struct PoseRecorder : TrajectoryWriter {
+  explicit PoseRecorder(StampTime stamp) : stamp(stamp) {}
+  StampTime stamp;
   std::vector<StampedPose> poses;
-  void Write(const FrameResult& r) override { poses.push_back({r.timestamp, r.world_from_cam}); }
+  void Write(const FrameResult& r) override { poses.push_back(StampRow(r, stamp)); }
 };
 
 int Run(const RunArgs& a) {
@@ -55,7 +57,7 @@ int Run(const RunArgs& a) {
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
   for (auto& w : writers) writer_ptrs.push_back(w.get());
-  PoseRecorder recorder;
+  PoseRecorder recorder(ParseStampTime(a.outputs.stamp));
   if (!a.plot.empty()) writer_ptrs.push_back(&recorder);
 
   if (!a.quiet) {

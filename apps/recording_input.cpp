@@ -7,6 +7,8 @@
 #include "commands.hpp"
 #include "rgbdvo/sensor/calibration_catalog.hpp"
 #include "rgbdvo/sources/association_file.hpp"
+#include "rgbdvo/sources/pairing.hpp"
+#include "run_common.hpp"
 #ifdef RGBDVO_WITH_ROSBAG
 #include "rgbdvo/sources/rosbag_source.hpp"
 #endif
@@ -23,6 +25,7 @@ void RecordingArgs::AddFlags(CLI::App* cmd) {
       ->each([this](const std::string&) { depth_scale_given = true; });
   cmd->add_option("--max-dt", source.tum.max_time_diff_s, "max rgb-depth time difference, s")
       ->capture_default_str();
+  AddPairingFlag(cmd, &pairing);
   cmd->add_option("--rgb-topic", rgb_topic, "ROS bag: colour sensor_msgs/Image topic")
       ->capture_default_str();
   cmd->add_option("--depth-topic", depth_topic,
@@ -43,8 +46,30 @@ bool IsRosbagFile(const std::string& path) {
 
 namespace {
 
+// One line on stderr when colour frames found no depth frame (of their own, one to one).
+void ReportUnpaired(const FrameSource& recording, const SourceOptions& options) {
+  const bool one_to_one = options.tum.pairing == Pairing::kOneToOne;
+  size_t unpaired = 0;
+  double window = options.tum.max_time_diff_s;
+  std::string first;
+  if (auto* tum = dynamic_cast<const TumSource*>(&recording); tum && !tum->unpaired().empty()) {
+    unpaired = tum->unpaired().size();
+    first = " (first: " + tum->unpaired().front().path + ")";
+  } else if (auto* fakenect = dynamic_cast<const FakenectSource*>(&recording)) {
+    unpaired = static_cast<size_t>(fakenect->unpaired());
+    window = options.fakenect.max_time_diff_s;
+  }
+  if (unpaired == 0) return;
+  std::cerr << "rgbdvo: skipping " << unpaired << " rgb frames without a depth frame "
+            << (one_to_one ? "of their own " : "") << "within " << window << " s"
+            << (one_to_one ? ", one-to-one pairing" : "") << first << "\n";
+}
+
 Recording OpenBag(const RecordingArgs& args) {
 #ifdef RGBDVO_WITH_ROSBAG
+  if (ParsePairing(args.pairing) != Pairing::kNearest)
+    throw std::runtime_error(args.path + ": --pairing " + args.pairing +
+                             " is not implemented for ROS bags (they pair nearest in time)");
   RosbagSourceOptions options;
   options.rgb_topic = args.rgb_topic;
   options.depth_topic = args.depth_topic;
@@ -94,12 +119,9 @@ Recording OpenRecordingInput(const RecordingArgs& args) {
   SourceOptions source_options = args.source;
   if (!args.depth_scale_given && r.calib.depth_units_per_m > 0)
     source_options.tum.depth_units_per_m = r.calib.depth_units_per_m;
+  source_options.tum.pairing = source_options.fakenect.pairing = ParsePairing(args.pairing);
   r.source = OpenRecording(args.path, source_options);
-  if (auto* tum = dynamic_cast<TumSource*>(r.source.get()); tum && !tum->unpaired().empty()) {
-    std::cerr << "rgbdvo: skipping " << tum->unpaired().size()
-              << " rgb frames without a depth frame within " << args.source.tum.max_time_diff_s
-              << " s (first: " << tum->unpaired().front().path << ")\n";
-  }
+  ReportUnpaired(*r.source, source_options);
   r.inputs = {r.calib_source, args.path};
   const std::filesystem::path folder =
       is_file ? std::filesystem::path(args.path).parent_path() : std::filesystem::path(args.path);

@@ -17,11 +17,12 @@ struct RecordingArgs {
   std::string path, calib;
   SourceOptions source;
   bool depth_scale_given = false;
+  std::string pairing = "nearest";  // --pairing, as ParsePairing takes it
   // ROS bag topics (rosbag_source.hpp's defaults: the TUM bags').
   std::string rgb_topic = "/camera/rgb/image_color", depth_topic = "/camera/depth/image";
   std::string rgb_info_topic = "/camera/rgb/camera_info";
   std::string depth_info_topic = "/camera/depth/camera_info";
-  void AddFlags(CLI::App* cmd);  // --calib, --depth-scale, --max-dt and the topic flags
+  void AddFlags(CLI::App* cmd);  // --calib, --depth-scale, --max-dt, --pairing, the topic flags
 };
 
 struct Recording {

@@ -27,13 +27,31 @@ void TrajectoryOutputs::AddFlags(CLI::App* cmd) {
   cmd->add_option("--kitti", kitti,
                   "trajectory in KITTI format (3x4 camera-to-world matrix a line, no timestamps; - "
                   "= standard output)");
+  cmd->add_option("--stamp", stamp,
+                  "time of each trajectory row: color (the colour image's: the pose as estimated, "
+                  "a row per frame) or depth (the paired depth image's: the pose moved there at "
+                  "the frame's velocity; a frame whose depth time repeats an earlier row's is "
+                  "left out of --tum and --kitti)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"color", "depth"}));
+}
+
+void AddPairingFlag(CLI::App* cmd, std::string* pairing) {
+  cmd->add_option("--pairing", *pairing,
+                  "colour-depth pairing: nearest (each colour image takes the nearest depth "
+                  "image; two can share one) or one-to-one (as the TUM tools' associate.py: "
+                  "closest pairs first, each image used once; a colour image left without depth "
+                  "is dropped)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"nearest", "one-to-one"}));
 }
 
 std::vector<std::unique_ptr<TrajectoryWriter>> TrajectoryOutputs::Open() const {
   std::vector<std::unique_ptr<TrajectoryWriter>> writers;
-  if (!csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(csv));
-  if (!tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(tum));
-  if (!kitti.empty()) writers.push_back(std::make_unique<KittiTrajectoryWriter>(kitti));
+  const StampTime when = ParseStampTime(stamp);
+  if (!csv.empty()) writers.push_back(std::make_unique<CsvTrajectoryWriter>(csv, when));
+  if (!tum.empty()) writers.push_back(std::make_unique<TumTrajectoryWriter>(tum, when));
+  if (!kitti.empty()) writers.push_back(std::make_unique<KittiTrajectoryWriter>(kitti, when));
   return writers;
 }
 

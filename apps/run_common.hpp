@@ -22,7 +22,8 @@ namespace rgbdvo::cli {
 
 struct TrajectoryOutputs {
   std::string csv, tum, kitti;
-  void AddFlags(CLI::App* cmd);  // --out, --tum, --kitti
+  std::string stamp = "color";   // --stamp, as ParseStampTime takes it
+  void AddFlags(CLI::App* cmd);  // --csv (--out), --tum, --kitti, --stamp
   // Throws naming the file when an output is one of `inputs` (existing files; others are
   // ignored) or both outputs are the same file: writing would destroy what the run reads.
   void RefuseInputs(const std::vector<std::string>& inputs) const;
@@ -30,6 +31,9 @@ struct TrajectoryOutputs {
   // A writer per file given; throws naming a file that cannot be written.
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
 };
+
+// --pairing into *pairing ("nearest" or "one-to-one", as ParsePairing takes it).
+void AddPairingFlag(CLI::App* cmd, std::string* pairing);
 
 // The hidden --debug-frame-delay-ms into *ms (for tests: an odometry that much slower), and the
 // sleep it asks for after each frame.

@@ -55,7 +55,7 @@ std::string CaptureStats::Brief() const {
 
 KinectSource::KinectSource(const KinectSourceOptions& options)
     : options_(options),
-      pairer_(std::llround(options.max_time_diff_s * 1e6)),
+      pairer_(std::llround(options.max_time_diff_s * 1e6), options.pairing),
       queue_(static_cast<size_t>(std::max(1, options.queue_capacity))),
       record_queue_(8) {
   options_.Check();
@@ -336,7 +336,8 @@ std::string KinectSource::Describe() const {
                         : "Kinect v1 #" + std::to_string(options_.device))
     << " via libfreenect: RGB " << width_ << "x" << height_
     << " + raw 11-bit depth, pairing window " << options_.max_time_diff_s
-    << " s of the device clock, queue " << options_.queue_capacity
+    << " s of the device clock" << (options_.pairing == Pairing::kOneToOne ? " (one to one)" : "")
+    << ", queue " << options_.queue_capacity
     << (options_.drop_when_behind ? " (drops the oldest pair when the odometry is behind)"
                                   : " (waits for the odometry, no drops)");
   if (!options_.record_folder.empty()) s << ", recording to " << options_.record_folder;

@@ -202,6 +202,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   // points are lifted into that camera (below). Colour times are also distinct, where two colour
   // frames can share one depth frame and its time.
   r.timestamp = frame.color_timestamp;
+  r.depth_timestamp = frame.timestamp;
   r.features = static_cast<int>(features.size());
 
   // The motion prior: constant velocity from the last two accepted frames (none yet: zero),
@@ -275,6 +276,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     Advance(std::move(cur), new_keyframe);
     r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
     r.world_from_cam = last_.world_from_cam;
+    r.velocity = LastVelocity();
     return r;
   }
   if (options_.depth_fallback && !last_.depth_m.empty()) {
@@ -289,12 +291,14 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       Advance(std::move(cur), false);
       r.status = FrameStatus::kDepth;
       r.world_from_cam = last_.world_from_cam;
+      r.velocity = LastVelocity();
       return r;
     }
     r.reason += "+" + aligned.reason;
   }
   r.world_from_cam = options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
   r.world_from_cam.linear() = NearestRotation(r.world_from_cam.linear());
+  if (options_.predict_failed_frames) r.velocity = LastVelocity();  // held: no motion
   // A frame with fewer points than a verified motion needs inliers (a blank wall, a covered
   // lens) cannot be matched by the frames after it: no restart from it; the next one is tried.
   const auto can_restart = [&] {
@@ -314,6 +318,12 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     r.status = options_.predict_failed_frames ? FrameStatus::kPredicted : FrameStatus::kRejected;
   }
   return r;
+}
+
+Velocity Odometry::LastVelocity() const {
+  if (!has_before_) return {};
+  return VelocityOf(world_from_before_.inverse() * last_.world_from_cam,
+                    last_.color_timestamp - before_color_time_);
 }
 
 void Odometry::Advance(Reference cur, bool new_keyframe) {

@@ -213,6 +213,10 @@ std::string RunSummary::Brief() const {
     << " lost, longest gap " << longest_gap_frames << " frames (" << std::setprecision(2)
     << longest_gap_seconds << " s), mean inliers " << std::setprecision(1) << mean_inliers << ", "
     << (seconds > 0 ? frames / seconds : 0.0) << " fps";
+  if (rows_left_out > 0)
+    s << "; " << rows_left_out
+      << " frames left out of the TUM/KITTI files (their depth image's time repeats an earlier "
+         "row's)";
   return s.str();
 }
 
@@ -299,6 +303,8 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     on_warning(*warning);
   summary.longest_gap_frames = gaps.longest_frames();
   summary.longest_gap_seconds = gaps.longest_seconds();
+  for (const TrajectoryWriter* w : writers)
+    summary.rows_left_out = std::max(summary.rows_left_out, w->rows_left_out());
   summary.mean_inliers = summary.frames > 1 ? inlier_sum / (summary.frames - 1) : 0.0;
   summary.seconds = start.Seconds();
   return summary;

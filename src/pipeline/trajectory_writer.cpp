@@ -5,11 +5,29 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "rgbdvo/io/trajectory_io.hpp"
+#include "rgbdvo/geometry/motion_prior.hpp"
 
 namespace rgbdvo {
 
-FileTrajectoryWriter::FileTrajectoryWriter(const std::string& path) : path_(path) {
+StampTime ParseStampTime(const std::string& name) {
+  if (name == "color") return StampTime::kColor;
+  if (name == "depth") return StampTime::kDepth;
+  throw std::invalid_argument("unknown stamp '" + name + "' (expected color or depth)");
+}
+
+std::string StampTimeName(StampTime stamp) {
+  return stamp == StampTime::kDepth ? "depth" : "color";
+}
+
+StampedPose StampRow(const FrameResult& r, StampTime stamp) {
+  if (stamp == StampTime::kColor) return {r.timestamp, r.world_from_cam};
+  Rigid3d moved = MoveAtVelocity(r.world_from_cam, r.velocity, r.depth_timestamp - r.timestamp);
+  moved.linear() = NearestRotation(moved.linear());
+  return {r.depth_timestamp, moved};
+}
+
+FileTrajectoryWriter::FileTrajectoryWriter(const std::string& path, StampTime stamp)
+    : path_(path), stamp_(stamp) {
   if (path == "-") {
     out_.std::basic_ios<char>::rdbuf(std::cout.rdbuf());
     out_.clear();
@@ -23,6 +41,17 @@ FileTrajectoryWriter::FileTrajectoryWriter(const std::string& path) : path_(path
   out_ << std::fixed;
 }
 
+bool FileTrajectoryWriter::Ascending(double timestamp) {
+  if (stamp_ == StampTime::kColor) return true;
+  if (has_last_ && !(timestamp > last_)) {
+    ++left_out_;
+    return false;
+  }
+  has_last_ = true;
+  last_ = timestamp;
+  return true;
+}
+
 void FileTrajectoryWriter::EndRow() {
   out_.flush();
   if (!out_)
@@ -30,35 +59,46 @@ void FileTrajectoryWriter::EndRow() {
                              ": write failed (disk full, file gone or pipe closed?)");
 }
 
-CsvTrajectoryWriter::CsvTrajectoryWriter(const std::string& path) : FileTrajectoryWriter(path) {
-  out_ << "frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status\n";
+CsvTrajectoryWriter::CsvTrajectoryWriter(const std::string& path, StampTime stamp)
+    : FileTrajectoryWriter(path, stamp) {
+  out_ << "frame,timestamp," << (stamp_ == StampTime::kDepth ? "color_timestamp," : "")
+       << "tx,ty,tz,qx,qy,qz,qw,matches,inliers,status\n";
   EndRow();
 }
 
 void CsvTrajectoryWriter::Write(const FrameResult& r) {
-  out_ << r.frame << ',' << std::setprecision(6) << r.timestamp << ',';
-  WritePoseFields(out_, r.world_from_cam, ',');
+  const StampedPose row = StampRow(r, stamp_);
+  out_ << r.frame << ',' << std::setprecision(6) << row.timestamp << ',';
+  if (stamp_ == StampTime::kDepth) out_ << r.timestamp << ',';
+  WritePoseFields(out_, row.world_from_cam, ',');
   out_ << ',' << r.matches << ',' << r.inliers << ',' << r.StatusString() << '\n';
   EndRow();
 }
 
-TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path) : FileTrajectoryWriter(path) {
-  out_ << "# timestamp tx ty tz qx qy qz qw (camera-to-world, rgbdvo)\n";
+TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path, StampTime stamp)
+    : FileTrajectoryWriter(path, stamp) {
+  out_ << "# timestamp tx ty tz qx qy qz qw (camera-to-world"
+       << (stamp_ == StampTime::kDepth ? " at the depth images' times" : "") << ", rgbdvo)\n";
   EndRow();
 }
 
 void TumTrajectoryWriter::Write(const FrameResult& r) {
-  WriteTumLine(out_, r.timestamp, r.world_from_cam);
+  const StampedPose row = StampRow(r, stamp_);
+  if (!Ascending(row.timestamp)) return;
+  WriteTumLine(out_, row.timestamp, row.world_from_cam);
   EndRow();
 }
 
-KittiTrajectoryWriter::KittiTrajectoryWriter(const std::string& path) : FileTrajectoryWriter(path) {
+KittiTrajectoryWriter::KittiTrajectoryWriter(const std::string& path, StampTime stamp)
+    : FileTrajectoryWriter(path, stamp) {
   out_ << std::setprecision(9);
   out_.unsetf(std::ios::floatfield);  // general notation: KITTI tools read either
 }
 
 void KittiTrajectoryWriter::Write(const FrameResult& r) {
-  const Eigen::Matrix4d M = r.world_from_cam.matrix();
+  const StampedPose row = StampRow(r, stamp_);
+  if (!Ascending(row.timestamp)) return;
+  const Eigen::Matrix4d M = row.world_from_cam.matrix();
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 4; ++col) out_ << M(row, col) << (row == 2 && col == 3 ? '\n' : ' ');
   EndRow();

@@ -59,7 +59,7 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
   has_index_ = fs::is_regular_file(index);
   const std::vector<std::string> names =
       has_index_ ? ReadFakenectIndex(index) : ListFakenectFiles(folder);
-  StreamPairer<Entry> pairer(std::llround(options_.max_time_diff_s * 1e6));
+  StreamPairer<Entry> pairer(std::llround(options_.max_time_diff_s * 1e6), options_.pairing);
   std::string first_missing;
   int missing = 0;
   auto add = [this](std::vector<StampedPair<Entry>> done) {
@@ -136,7 +136,8 @@ std::string FakenectSource::Describe() const {
   std::ostringstream s;
   s << "fakenect recording " << folder_ << ": " << pairs_.size() << " colour-depth pairs within "
     << options_.max_time_diff_s << " s of the " << (by_device_clock_ ? "device's" : "host's")
-    << " clock (" << color_frames_ << " colour, " << depth_frames_ << " depth, " << accel_entries_
+    << " clock" << (options_.pairing == Pairing::kOneToOne ? ", one to one" : "") << " ("
+    << color_frames_ << " colour, " << depth_frames_ << " depth, " << accel_entries_
     << " accelerometer entries, " << unpaired_
     << " colour frames without depth), Kinect raw 11-bit depth"
     << (has_index_ ? "" : "; no INDEX.txt: files taken in wall-clock order");

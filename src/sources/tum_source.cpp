@@ -57,20 +57,12 @@ TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
   std::vector<TumListEntry> depth = ReadTumList((fs::path(folder) / "depth.txt").string());
   std::sort(depth.begin(), depth.end(),
             [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });
-  for (const TumListEntry& r : rgb) {
-    auto it = std::lower_bound(depth.begin(), depth.end(), r.timestamp,
-                               [](const TumListEntry& d, double t) { return d.timestamp < t; });
-    const TumListEntry* best = nullptr;
-    if (it != depth.end()) best = &*it;
-    if (it != depth.begin()) {
-      const TumListEntry* before = &*(it - 1);
-      if (!best || r.timestamp - before->timestamp < best->timestamp - r.timestamp) best = before;
-    }
-    if (best && std::abs(best->timestamp - r.timestamp) <= options_.max_time_diff_s)
-      pairs_.push_back({r, *best});
-    else
-      unpaired_.push_back(r);
-  }
+  std::vector<double> rgb_s, depth_s;
+  for (const TumListEntry& r : rgb) rgb_s.push_back(r.timestamp);
+  for (const TumListEntry& d : depth) depth_s.push_back(d.timestamp);
+  const StampPairs paired = PairStamps(options_.pairing, rgb_s, depth_s, options_.max_time_diff_s);
+  for (const StampPairs::Pair& p : paired.pairs) pairs_.push_back({rgb[p.color], depth[p.depth]});
+  for (size_t c : paired.unpaired_color) unpaired_.push_back(rgb[c]);
   if (pairs_.empty())
     throw std::runtime_error(folder + ": empty sequence (" + std::to_string(rgb.size()) +
                              " rgb frames, none with a depth frame within " +
@@ -127,7 +119,9 @@ std::string TumSource::Describe() const {
     return s.str();
   }
   s << "TUM RGB-D folder " << folder_ << ": " << pairs_.size() << " rgb-depth pairs within "
-    << options_.max_time_diff_s << " s, " << unpaired_.size() << " rgb frames without depth, "
+    << options_.max_time_diff_s << " s"
+    << (options_.pairing == Pairing::kOneToOne ? " (one to one)" : "") << ", " << unpaired_.size()
+    << " rgb frames without depth, "
     << "depth " << options_.depth_units_per_m << " units per metre";
   return s.str();
 }

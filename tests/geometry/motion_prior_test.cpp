@@ -1,6 +1,7 @@
 #include "rgbdvo/geometry/motion_prior.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "test_support.hpp"
 
@@ -41,4 +42,41 @@ TEST_CASE("PredictConstantVelocity continues a constant motion, scaled by the fr
   // Frames with the same time give no velocity: zero motion.
   CHECK(RigidNear(PredictConstantVelocity(world_from_0, t1, world_from_1, t1, t1 + 0.1),
                   world_from_1, 1e-12, 1e-12));
+}
+
+TEST_CASE("MoveAtVelocity moves a pose by the velocity times dt, in the camera's frame") {
+  // Camera at (1, 2, 3) turned 90 degrees about z; 0.5 rad/s about z and 1 m/s along its own
+  // x. In 20 ms: 90 deg + 0.01 rad about z, and 2 cm along its x, which is the world's y.
+  Rigid3d world_from_cam = Rigid3d::Identity();
+  world_from_cam.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
+  world_from_cam.translation() = Eigen::Vector3d(1, 2, 3);
+  Velocity v;
+  v.rotation_per_s = Eigen::Vector3d(0, 0, 0.5);
+  v.translation_per_s = Eigen::Vector3d(1, 0, 0);
+  Rigid3d expected = Rigid3d::Identity();
+  expected.linear() = Eigen::AngleAxisd(M_PI / 2 + 0.01, Eigen::Vector3d::UnitZ()).matrix();
+  expected.translation() = Eigen::Vector3d(1, 2.02, 3);
+  CHECK(RigidNear(MoveAtVelocity(world_from_cam, v, 0.02), expected, 1e-9, 1e-12));
+  // Back in time: the other way; zero dt or zero velocity: the pose itself.
+  expected.linear() = Eigen::AngleAxisd(M_PI / 2 - 0.01, Eigen::Vector3d::UnitZ()).matrix();
+  expected.translation() = Eigen::Vector3d(1, 1.98, 3);
+  CHECK(RigidNear(MoveAtVelocity(world_from_cam, v, -0.02), expected, 1e-9, 1e-12));
+  CHECK(RigidNear(MoveAtVelocity(world_from_cam, v, 0), world_from_cam, 1e-12, 1e-12));
+  CHECK(RigidNear(MoveAtVelocity(world_from_cam, Velocity{}, 0.02), world_from_cam, 1e-12, 1e-12));
+}
+
+TEST_CASE("VelocityOf a motion, moved by, continues it as PredictConstantVelocity does") {
+  std::mt19937 rng(9);
+  for (int k = 0; k < 10; ++k) {
+    const Rigid3d step = RandomRigid(rng, 0.05, 0.03);
+    const Rigid3d world_from_0 = RandomRigid(rng, 1.0, 2.0), world_from_1 = world_from_0 * step;
+    const double span = 1 / 30.0, dt = 0.012 * (k - 5) / 5;
+    const Velocity v = VelocityOf(step, span);
+    CHECK(RigidNear(MoveAtVelocity(world_from_1, v, dt),
+                    PredictConstantVelocity(world_from_0, 0, world_from_1, span, span + dt), 1e-9,
+                    1e-12));
+  }
+  const Velocity none = VelocityOf(RandomRigid(rng, 0.1, 0.1), 0);
+  CHECK(none.rotation_per_s.norm() == 0);
+  CHECK(none.translation_per_s.norm() == 0);
 }

@@ -310,3 +310,25 @@ TEST_CASE("With the depth fallback the blurred frames of a burst are aligned by 
     CHECK(RigidNear(r.world_from_cam, path[i], 0.3, 0.01));
   }
 }
+
+TEST_CASE("A frame's velocity is the motion from the estimated frame before it, per second") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.0);
+  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  Frame f0 = Render(scene, cam, path[0], 0);
+  f0.timestamp = f0.color_timestamp + 0.01;  // the depth image 10 ms later
+  const FrameResult r0 = odometry.Process(f0);
+  CHECK(r0.depth_timestamp == f0.timestamp);
+  CHECK(r0.velocity.rotation_per_s.norm() == 0);  // nothing to measure it by yet
+  CHECK(r0.velocity.translation_per_s.norm() == 0);
+  const FrameResult r1 = odometry.Process(Render(scene, cam, path[1], 1));
+  const FrameResult r2 = odometry.Process(Render(scene, cam, path[2], 2));
+  REQUIRE(r2.status == FrameStatus::kAccepted);
+  const Velocity v = VelocityOf(r1.world_from_cam.inverse() * r2.world_from_cam, 1 / 30.0);
+  CHECK((r2.velocity.rotation_per_s - v.rotation_per_s).norm() < 1e-9);
+  CHECK((r2.velocity.translation_per_s - v.translation_per_s).norm() < 1e-9);
+  // The true motion: 2 cm and 1 degree a frame, so 0.6 m/s and 30 deg/s.
+  const Velocity truth = VelocityOf(path[1].inverse() * path[2], 1 / 30.0);
+  CHECK((r2.velocity.translation_per_s - truth.translation_per_s).norm() < 0.1);
+}

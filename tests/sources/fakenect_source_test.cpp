@@ -1,5 +1,6 @@
 #include "rgbdvo/sources/fakenect_source.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -152,4 +153,32 @@ TEST_CASE("A fakenect recording is stamped by the device clock, not by jittered 
     CHECK(b->color_timestamp == Approx(a->color_timestamp).margin(1e-6));
     CHECK(b->timestamp == Approx(a->timestamp).margin(1e-6));
   }
+}
+
+TEST_CASE("A fakenect recording paired one to one uses each depth frame once") {
+  // Without the second depth frame, colour frame 1 is 33.3 ms from depth frames 0 and 2, within
+  // the 34 ms window: nearest pairing gives it one of them, shared with a neighbour; one to one
+  // leaves it without a depth frame of its own.
+  const std::string dir = SmallRecording("fone", 4);
+  std::vector<std::string> lines = IndexLines(dir);
+  const auto second_depth =
+      std::find_if(lines.begin(), lines.end(),
+                   [n = 0](const std::string& l) mutable { return l[0] == 'd' && n++ == 1; });
+  REQUIRE(second_depth != lines.end());
+  lines.erase(second_depth);
+  std::ofstream index(dir + "/INDEX.txt");
+  for (const std::string& l : lines) index << l << "\n";
+  index.close();
+  FakenectSourceOptions options;
+  FakenectSource nearest(dir, options);
+  CHECK(nearest.size() == 4);
+  options.pairing = Pairing::kOneToOne;
+  FakenectSource one(dir, options);
+  CHECK(one.size() == 3);
+  CHECK(one.unpaired() == 1);
+  std::vector<double> depth_times;
+  while (const std::optional<Frame> f = one.Next()) depth_times.push_back(f->timestamp);
+  REQUIRE(depth_times.size() == 3);
+  CHECK(depth_times[0] < depth_times[1]);
+  CHECK(depth_times[1] < depth_times[2]);
 }

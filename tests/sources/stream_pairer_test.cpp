@@ -1,6 +1,9 @@
 #include "rgbdvo/sources/stream_pairer.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <random>
+#include <tuple>
 
 using namespace rgbdvo;
 
@@ -77,4 +80,66 @@ TEST_CASE("KinectClock turns 60 MHz frame stamps into microseconds across the 32
   CHECK(clock.Micros(start + 2000000u) == 33333);  // wrapped: 2e6 ticks = 33.3 ms later
   CHECK(clock.Micros(start + 1000u) == 17);        // the other stream, slightly earlier
   CHECK(clock.Micros(start + 4000000u) == 66667);
+}
+
+TEST_CASE("One-to-one StreamPairer uses each depth frame once and drops the colour frame left") {
+  // d100 is 8 ms from r1 and 2 ms from r2: r2 takes it; r1 has nothing else within 20 ms.
+  Pairer p(20000, Pairing::kOneToOne);
+  const auto pairs = RunStream(
+      p,
+      {{'r', 0, 1}, {'d', 8, 100}, {'r', 10, 2}, {'r', 100, 3}, {'d', 95, 101}, {'d', 130, 102}});
+  CHECK(pairs == std::vector<std::pair<int, int>>{{2, 100}, {3, 101}});
+  CHECK(p.unpaired() == 1);
+}
+
+TEST_CASE("One-to-one StreamPairer decides a pair once no later frame can be closer") {
+  Pairer p(20000, Pairing::kOneToOne);
+  CHECK(p.AddDepth({0, 100}).empty());
+  CHECK(p.AddColor({5000, 1}).empty());  // a depth frame to come could be nearer r1
+  // Now a colour frame to come is over 5 ms from d100 and a depth frame over 28 ms from r1.
+  const auto done = p.AddDepth({33000, 101});
+  REQUIRE(done.size() == 1);
+  CHECK(done[0].color.value == 1);
+  CHECK(done[0].depth.value == 100);
+  CHECK(
+      p.AddColor({38000, 2}).empty());  // d101 is 5 ms away; a depth frame to come could be nearer
+  const auto last = p.Finish();
+  REQUIRE(last.size() == 1);
+  CHECK(last[0].color.value == 2);
+  CHECK(last[0].depth.value == 101);
+}
+
+TEST_CASE("One-to-one StreamPairer gives associate.py's pairs over jittered 30 Hz streams") {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    // Colour and depth at 30 Hz with an offset, jitter and dropped frames; merged in time order.
+    std::uniform_int_distribution<int> jitter(-6000, 6000), offset(-16000, 16000), drop(0, 9);
+    const int shift = offset(rng);
+    std::vector<std::tuple<int64_t, char, int>> events;
+    for (int i = 0; i < 60; ++i) {
+      if (drop(rng) > 0) events.emplace_back(i * 33333 + jitter(rng), 'r', i);
+      if (drop(rng) > 0) events.emplace_back(i * 33333 + shift + jitter(rng), 'd', 1000 + i);
+    }
+    std::sort(events.begin(), events.end());
+    std::vector<double> color_s, depth_s;
+    std::vector<int> color_id, depth_id;
+    StreamPairer<int> p(20000, Pairing::kOneToOne);
+    std::vector<std::pair<int, int>> streamed;
+    auto take = [&](const std::vector<StampedPair<int>>& done) {
+      for (const auto& d : done) streamed.emplace_back(d.color.value, d.depth.value);
+    };
+    for (const auto& [t, type, id] : events) {
+      (type == 'r' ? color_s : depth_s).push_back(static_cast<double>(t) * 1e-6);
+      (type == 'r' ? color_id : depth_id).push_back(id);
+      take(type == 'r' ? p.AddColor({t, id}) : p.AddDepth({t, id}));
+    }
+    take(p.Finish());
+    const StampPairs whole = PairStamps(Pairing::kOneToOne, color_s, depth_s, 0.02);
+    std::vector<std::pair<int, int>> expected;
+    for (const StampPairs::Pair& q : whole.pairs)
+      expected.emplace_back(color_id[q.color], depth_id[q.depth]);
+    INFO("trial " << trial);
+    CHECK(streamed == expected);
+    CHECK(p.unpaired() == static_cast<int>(whole.unpaired_color.size()));
+  }
 }

@@ -30,16 +30,17 @@ struct _freenect_device;
 namespace rgbdvo {
 
 struct KinectSourceOptions {
-  int device = 0;                  // libfreenect device index
-  int max_frames = 0;              // stop after this many colour-depth pairs, 0 = no limit
-  double max_seconds = 0;          // stop after this long, s, 0 = no limit
-  int queue_capacity = 4;          // pairs waiting for the consumer (1.5 MB each)
-  bool drop_when_behind = true;    // false: wait for the consumer instead of dropping (for
-                                   // replays; a live Kinect would lose USB packets meanwhile)
-  double max_time_diff_s = 0.034;  // colour-depth pairing window, s (as FakenectSourceOptions)
-  std::string record_folder;       // "" = do not record
-  bool record_accel = true;        // also record accelerometer entries (a-*.dump)
-  double stall_timeout_s = 5.0;    // no frame for this long: treat the device as lost, s
+  int device = 0;                       // libfreenect device index
+  int max_frames = 0;                   // stop after this many colour-depth pairs, 0 = no limit
+  double max_seconds = 0;               // stop after this long, s, 0 = no limit
+  int queue_capacity = 4;               // pairs waiting for the consumer (1.5 MB each)
+  bool drop_when_behind = true;         // false: wait for the consumer instead of dropping (for
+                                        // replays; a live Kinect would lose USB packets meanwhile)
+  double max_time_diff_s = 0.034;       // colour-depth pairing window, s (as FakenectSourceOptions)
+  Pairing pairing = Pairing::kNearest;  // stream_pairer.hpp; kOneToOne uses each depth frame once
+  std::string record_folder;            // "" = do not record
+  bool record_accel = true;             // also record accelerometer entries (a-*.dump)
+  double stall_timeout_s = 5.0;         // no frame for this long: treat the device as lost, s
   const std::atomic<bool>* stop = nullptr;  // stop when it becomes true (e.g. set on SIGINT)
   void Check() const;
 };

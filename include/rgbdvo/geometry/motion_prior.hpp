@@ -17,4 +17,20 @@ Rigid3d ScaleMotion(const Rigid3d& b_from_a, double s);
 Rigid3d PredictConstantVelocity(const Rigid3d& world_from_before, double t_before,
                                 const Rigid3d& world_from_last, double t_last, double t_cur);
 
+// A constant velocity in the camera's own frame, per second: the rotation's angle-axis vector
+// (rad/s) and the translation (m/s) of cam_t_from_cam_t+1s, in ScaleMotion's first-order sense.
+struct Velocity {
+  Eigen::Vector3d rotation_per_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d translation_per_s = Eigen::Vector3d::Zero();
+};
+
+// The velocity of before_from_last done in `seconds` (zero unless seconds > 0).
+Velocity VelocityOf(const Rigid3d& before_from_last, double seconds);
+
+// world_from_cam moved dt seconds along v (dt < 0: back): world_from_cam * M(dt), M(dt) the
+// rotation by v.rotation_per_s * dt and the translation v.translation_per_s * dt, so that
+// MoveAtVelocity(world_from_last, VelocityOf(before_from_last, span), dt) equals
+// world_from_last * ScaleMotion(before_from_last, dt / span).
+Rigid3d MoveAtVelocity(const Rigid3d& world_from_cam, const Velocity& v, double dt);
+
 }  // namespace rgbdvo

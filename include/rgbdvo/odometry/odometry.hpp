@@ -15,6 +15,7 @@
 #include "rgbdvo/features/guided_matching.hpp"
 #include "rgbdvo/features/matching.hpp"
 #include "rgbdvo/geometry/geometry.hpp"
+#include "rgbdvo/geometry/motion_prior.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
 #include "rgbdvo/sources/frame.hpp"
@@ -95,8 +96,15 @@ struct StageTimes {
 
 struct FrameResult {
   int frame = 0;
-  double timestamp = 0;  // seconds: the colour image's time (Frame::color_timestamp)
-  Rigid3d world_from_cam = Rigid3d::Identity();
+  double timestamp = 0;        // seconds: the colour image's time (Frame::color_timestamp)
+  double depth_timestamp = 0;  // seconds: the paired depth image's time (Frame::timestamp)
+  Rigid3d world_from_cam = Rigid3d::Identity();  // at `timestamp`
+  // The camera's velocity at this frame, from the last two estimated frames once this one is
+  // processed, timed by their colour images: for an estimated frame from the one before to this
+  // one, for a predicted frame the velocity it was predicted with; zero for a held (rejected)
+  // frame and before two frames were estimated.
+  // Moves the pose to another time, e.g. the depth image's (MoveAtVelocity).
+  Velocity velocity;
   int features = 0;
   int matches = 0;
   int pairs = 0;  // matches with depth at both ends
@@ -154,6 +162,8 @@ class Odometry {
 
   // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy.
   void Advance(Reference cur, bool new_keyframe);
+  // From the frame before last_ to last_, per second of colour time (zero without both).
+  Velocity LastVelocity() const;
 
   OdometryOptions options_;
   Calibration calib_;

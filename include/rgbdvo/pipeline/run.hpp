@@ -68,11 +68,15 @@ struct RunSummary {
   // Time the calling thread waited for the next frame's features (0 with one thread): near
   // `seconds` when the workers are the bottleneck, near 0 when the odometry is.
   double wait_seconds = 0;
+  // Frames the trajectory files left out (most of any writer: TrajectoryWriter::rows_left_out),
+  // with --stamp depth those sharing a depth image with the frame before.
+  int rows_left_out = 0;
   int fallbacks = 0;  // estimates redone with brute-force matching (FrameResult::fallbacks)
   int frames_with_fallback = 0;
   // Prediction error of the final inliers of accepted frames (FrameResult::prediction_error_px).
   ErrorHistogram prediction_error_px;
-  // One line: frames, each status, the longest gap, mean inliers, fps.
+  // One line: frames, each status, the longest gap, mean inliers, fps (and the rows left out of
+  // the trajectory files, if any).
   std::string Brief() const;
   std::string Timing() const;  // one line: milliseconds per frame for each stage
   // One line: brute-force fallbacks and percentiles of the prediction error.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rgbdvo/sources/frame_source.hpp"
+#include "rgbdvo/sources/pairing.hpp"
 
 namespace rgbdvo {
 
@@ -15,6 +16,7 @@ struct FakenectSourceOptions {
   // Colour-depth pairing window, s: one frame period at 30 Hz. On a healthy stream the nearest
   // depth frame is at most half a period away; the rest absorbs late callbacks.
   double max_time_diff_s = 0.034;
+  Pairing pairing = Pairing::kNearest;  // stream_pairer.hpp; kOneToOne uses each depth frame once
   void Check() const;
 };
 

@@ -5,16 +5,31 @@
 // The times are the Kinect's own frame timestamps (KinectClock below), not the host's arrival
 // times, which a busy host delays by different amounts for the two streams.
 //
-// Rule: a colour frame waits for the next depth frame, then takes whichever of the depth frame
-// before it and the one after it is nearer in time (the earlier on a tie), if within
-// max_dt_us. A colour frame still waiting when the next colour frame arrives is decided with
-// the depth frame before it only, so at most one colour frame and one depth frame are held.
+// Pairing::kNearest: a colour frame waits for the next depth frame, then takes whichever of the
+// depth frame before it and the one after it is nearer in time (the earlier on a tie), if
+// within max_dt_us. A colour frame still waiting when the next colour frame arrives is decided
+// with the depth frame before it only, so at most one colour frame and one depth frame are held.
+//
+// Pairing::kOneToOne: associate.py's rule (pairing.hpp: closest pairs first, each frame used
+// once) online. The closest pair among the frames held is taken once no frame yet to come could
+// be closer to either of its frames: each stream's stamps ascend, so a colour frame to come is
+// at least (latest colour time - depth time) from the depth frame, and likewise for depth. On
+// streams in time order this gives exactly associate.py's pairs over the whole recording, each
+// decided about one frame period late. A colour frame is dropped when no depth frame held or to
+// come can pair with it. At most kMaxHeld colour frames wait (a stalled depth stream): beyond,
+// the oldest takes its nearest free depth frame at hand, or is dropped.
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <deque>
+#include <optional>
+#include <tuple>
 #include <utility>
 #include <vector>
+
+#include "rgbdvo/sources/pairing.hpp"
 
 namespace rgbdvo {
 
@@ -65,9 +80,9 @@ struct StampedPair {
 };
 
 template <class T>
-class StreamPairer {
+class NearestStreamPairer {
  public:
-  explicit StreamPairer(int64_t max_dt_us) : max_dt_us_(max_dt_us) {}
+  explicit NearestStreamPairer(int64_t max_dt_us) : max_dt_us_(max_dt_us) {}
 
   // Each returns the pairs this frame completes (zero, one or two), in colour order.
   std::vector<StampedPair<T>> AddColor(Stamped<T> color) {
@@ -115,6 +130,140 @@ class StreamPairer {
   bool has_pending_ = false, has_last_depth_ = false;
   Stamped<T> pending_, last_depth_;
   int unpaired_ = 0;
+};
+
+template <class T>
+class OneToOneStreamPairer {
+ public:
+  static constexpr size_t kMaxHeld = 8;
+  explicit OneToOneStreamPairer(int64_t max_dt_us) : max_dt_us_(max_dt_us) {}
+
+  std::vector<StampedPair<T>> AddColor(Stamped<T> color) {
+    latest_color_ = color.t_us;
+    seen_color_ = true;
+    colors_.push_back({std::move(color), std::nullopt, false});
+    return Resolve(false);
+  }
+  std::vector<StampedPair<T>> AddDepth(Stamped<T> depth) {
+    latest_depth_ = depth.t_us;
+    seen_depth_ = true;
+    depths_.push_back(std::move(depth));
+    if (depths_.size() > 2 * kMaxHeld) depths_.pop_front();  // a stalled colour stream
+    return Resolve(false);
+  }
+  std::vector<StampedPair<T>> Finish() { return Resolve(true); }
+  int unpaired() const { return unpaired_; }
+
+ private:
+  struct Held {
+    Stamped<T> color;
+    std::optional<Stamped<T>> depth;
+    bool decided = false;
+  };
+  using Key = std::tuple<int64_t, int64_t, int64_t>;  // |dt|, colour time, depth time
+
+  bool Near(int64_t a, int64_t b) const { return std::llabs(a - b) <= max_dt_us_; }
+  // The closest free pair held (associate.py's order), if any: colour and depth positions.
+  std::optional<std::pair<size_t, size_t>> Closest(size_t only_color = SIZE_MAX) const {
+    std::optional<std::pair<size_t, size_t>> best;
+    Key best_key{};
+    for (size_t c = 0; c < colors_.size(); ++c) {
+      if (colors_[c].decided || (only_color != SIZE_MAX && c != only_color)) continue;
+      for (size_t d = 0; d < depths_.size(); ++d) {
+        const int64_t tc = colors_[c].color.t_us, td = depths_[d].t_us;
+        const Key key{std::llabs(tc - td), tc, td};
+        if (!Near(tc, td) || (best && !(key < best_key))) continue;
+        best = std::make_pair(c, d);
+        best_key = key;
+      }
+    }
+    return best;
+  }
+  // No frame to come can be closer to either frame of the pair (stamps ascend per stream).
+  bool Final(size_t c, size_t d, bool end) const {
+    const int64_t tc = colors_[c].color.t_us, td = depths_[d].t_us, dt = std::llabs(tc - td);
+    return end || (latest_color_ - td >= dt && latest_depth_ - tc >= dt);
+  }
+  void Take(size_t c, size_t d) {
+    colors_[c].depth = std::move(depths_[d]);
+    colors_[c].decided = true;
+    depths_.erase(depths_.begin() + static_cast<std::ptrdiff_t>(d));
+  }
+  // Drops colour frames no depth frame held or to come can pair with, and depth frames no
+  // colour frame can.
+  void Prune(bool end) {
+    for (Held& h : colors_) {
+      if (h.decided) continue;
+      bool candidate = false;
+      for (const Stamped<T>& d : depths_) candidate = candidate || Near(h.color.t_us, d.t_us);
+      const bool more = !end && (!seen_depth_ || latest_depth_ - h.color.t_us <= max_dt_us_);
+      if (!candidate && !more) h.decided = true, ++unpaired_;
+    }
+    for (size_t d = 0; d < depths_.size();) {
+      bool candidate = false;
+      for (const Held& h : colors_)
+        candidate = candidate || (!h.decided && Near(h.color.t_us, depths_[d].t_us));
+      const bool more = !end && (!seen_color_ || latest_color_ - depths_[d].t_us <= max_dt_us_);
+      if (!candidate && !more)
+        depths_.erase(depths_.begin() + static_cast<std::ptrdiff_t>(d));
+      else
+        ++d;
+    }
+  }
+  std::vector<StampedPair<T>> Resolve(bool end) {
+    for (;;) {
+      const auto best = Closest();
+      if (!best || !Final(best->first, best->second, end)) break;
+      Take(best->first, best->second);
+    }
+    Prune(end);
+    while (colors_.size() > kMaxHeld && !colors_.front().decided) {  // forced, see above
+      if (const auto best = Closest(0))
+        Take(best->first, best->second);
+      else
+        colors_.front().decided = true, ++unpaired_;
+    }
+    std::vector<StampedPair<T>> out;
+    while (!colors_.empty() && colors_.front().decided) {
+      if (colors_.front().depth)
+        out.push_back({std::move(colors_.front().color), std::move(*colors_.front().depth)});
+      colors_.pop_front();
+    }
+    return out;
+  }
+
+  int64_t max_dt_us_;
+  std::deque<Held> colors_;        // in arrival order, until emitted
+  std::deque<Stamped<T>> depths_;  // free depth frames that may still be paired
+  bool seen_color_ = false, seen_depth_ = false;
+  int64_t latest_color_ = 0, latest_depth_ = 0;
+  int unpaired_ = 0;
+};
+
+// Either rule behind one interface; the pairs come out in colour order.
+template <class T>
+class StreamPairer {
+ public:
+  explicit StreamPairer(int64_t max_dt_us, Pairing pairing = Pairing::kNearest)
+      : one_to_one_(pairing == Pairing::kOneToOne), nearest_(max_dt_us), unique_(max_dt_us) {}
+  // Each returns the pairs this frame completes (zero or more), in colour order.
+  std::vector<StampedPair<T>> AddColor(Stamped<T> color) {
+    return one_to_one_ ? unique_.AddColor(std::move(color)) : nearest_.AddColor(std::move(color));
+  }
+  std::vector<StampedPair<T>> AddDepth(Stamped<T> depth) {
+    return one_to_one_ ? unique_.AddDepth(std::move(depth)) : nearest_.AddDepth(std::move(depth));
+  }
+  // End of the stream: decides the colour frames still waiting.
+  std::vector<StampedPair<T>> Finish() {
+    return one_to_one_ ? unique_.Finish() : nearest_.Finish();
+  }
+  // Colour frames dropped: no depth frame within max_dt_us (one-to-one: none left free).
+  int unpaired() const { return one_to_one_ ? unique_.unpaired() : nearest_.unpaired(); }
+
+ private:
+  bool one_to_one_;
+  NearestStreamPairer<T> nearest_;
+  OneToOneStreamPairer<T> unique_;
 };
 
 }  // namespace rgbdvo

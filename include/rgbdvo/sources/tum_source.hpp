@@ -5,12 +5,14 @@
 #include <vector>
 
 #include "rgbdvo/sources/frame_source.hpp"
+#include "rgbdvo/sources/pairing.hpp"
 
 namespace rgbdvo {
 
 struct TumSourceOptions {
-  double max_time_diff_s = 0.02;     // rgb/depth association window (TUM tools: 0.02 s)
-  double depth_units_per_m = 5000.;  // 16-bit depth scale (TUM: 5000 per metre)
+  double max_time_diff_s = 0.02;        // rgb/depth association window (TUM tools: 0.02 s)
+  double depth_units_per_m = 5000.;     // 16-bit depth scale (TUM: 5000 per metre)
+  Pairing pairing = Pairing::kNearest;  // pairing.hpp; kOneToOne as associate.py
   void Check() const;
 };
 
@@ -46,7 +48,8 @@ class TumSource : public FrameSource {
   std::optional<size_t> Size() const override { return pairs_.size(); }
 
   size_t size() const { return pairs_.size(); }
-  // Colour frames with no depth frame within the window (reported, then skipped).
+  // Colour frames with no depth frame within the window, or (one-to-one) whose candidates were
+  // all taken by closer pairs (reported, then skipped).
   const std::vector<TumListEntry>& unpaired() const { return unpaired_; }
 
  private:
