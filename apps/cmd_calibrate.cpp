@@ -27,7 +27,7 @@ struct CalibrateArgs {
 // The calibration whose all but A-D is kept, and a line saying where K_ir comes from.
 Calibration Base(const CalibrateArgs& a) {
   if (a.calib.empty()) {
-    const Calibration paper;
+    Calibration paper;  // not const: returned by move
     std::cout << "# K_ir, depth range: the paper's (fx = fy = " << paper.fx << ", cx = " << paper.cx
               << ", cy = " << paper.cy << "); give --calib with your camera's for better results"
               << std::endl;

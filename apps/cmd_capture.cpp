@@ -71,6 +71,7 @@ int Capture(CaptureArgs& a) {
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
   const std::vector<std::unique_ptr<TrajectoryWriter> > writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
+  writer_ptrs.reserve(writers.size());
   for (auto& w : writers) writer_ptrs.push_back(w.get());
 
   // Ctrl-C (or SIGTERM from a supervisor) is how a capture ends: cleanly, exit 0.

@@ -56,6 +56,7 @@ int Run(const RunArgs& a) {
                  "but not written\n";
   const std::vector<std::unique_ptr<TrajectoryWriter>> writers = a.outputs.Open();
   std::vector<TrajectoryWriter*> writer_ptrs;
+  writer_ptrs.reserve(writers.size() + 1);
   for (auto& w : writers) writer_ptrs.push_back(w.get());
   PoseRecorder recorder(ParseStampTime(a.outputs.stamp));
   if (!a.plot.empty()) writer_ptrs.push_back(&recorder);

@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "rgbdvo: error: " << e.what() << std::endl;
     return 1;
+  } catch (...) {
+    std::cerr << "rgbdvo: error: unknown exception" << std::endl;
+    return 1;
   }
   return 0;
 }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -165,7 +166,7 @@ std::string StatusLine::Text(const FrameResult& r, const std::string& extra) con
   const std::string status = r.StatusString();
   s << ", " << fps << " fps, " << r.inliers << " inliers, " << status.substr(0, status.find(':'));
   if (total_ && fps > 0 && *total_ > done_)
-    s << ", " << static_cast<long>((*total_ - done_) / fps + 0.5) << " s left";
+    s << ", " << std::lround((*total_ - done_) / fps) << " s left";
   return s.str() + extra;
 }
 

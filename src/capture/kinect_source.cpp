@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "rgbdvo/sensor/kinect_depth.hpp"
 
@@ -174,11 +175,11 @@ void KinectSource::HandleFrame(bool is_depth, const void* data, uint32_t timesta
 
 void KinectSource::SetError(std::exception_ptr error) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (!error_) error_ = error;
+  if (!error_) error_ = std::move(error);
   quit_ = true;
 }
 
-void KinectSource::Record(RecordJob job) {
+void KinectSource::Record(const RecordJob& job) {
   while (!record_queue_.PushWait(job, std::chrono::milliseconds(100)))
     if (record_queue_.closed()) return;
 }

@@ -26,8 +26,8 @@ Eigen::Vector3d Residual(const RefineOptions& o, double f, const Eigen::Vector3d
   const double su = o.pixel_sigma / f;  // pixel noise in normalised coordinates
   const double sz = o.depth_noise_coeff * obs.z() * obs.z();
   const double iz = 1.0 / q.z();
-  const Eigen::Vector3d r((q.x() * iz - obs.x() / obs.z()) / su,
-                          (q.y() * iz - obs.y() / obs.z()) / su, (q.z() - obs.z()) / sz);
+  Eigen::Vector3d r((q.x() * iz - obs.x() / obs.z()) / su, (q.y() * iz - obs.y() / obs.z()) / su,
+                    (q.z() - obs.z()) / sz);
   if (J) {
     *J << iz / su, 0, -q.x() * iz * iz / su, 0, iz / su, -q.y() * iz * iz / su, 0, 0, 1 / sz;
   }

@@ -27,7 +27,7 @@ std::optional<Rigid3d> AlignRigid(const std::vector<PointPair>& pairs,
   // Eq. 7-10: H = U S V^T, R = V U^T maximises tr(R H). A reflection (det = -1) is turned into
   // the best proper rotation by flipping the axis of the smallest singular value (Umeyama 1991).
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector3d s = svd.singularValues();
+  const Eigen::Vector3d& s = svd.singularValues();
   if (!(s(0) > 0) || s(1) < 1e-9 * s(0)) return std::nullopt;  // coincident or collinear points
   Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
   if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) S(2, 2) = -1;

@@ -114,6 +114,7 @@ void PlotTrajectories(const std::vector<StampedPose>& gt,
   const double t0 = FirstTime(gt);
   std::vector<std::pair<std::string, std::string>> files = {{"gt.dat", PoseRows(gt, t0)}};
   std::vector<Eigen::Vector3d> all;
+  all.reserve(gt.size());
   for (const StampedPose& p : gt) all.push_back(p.world_from_cam.translation());
   for (size_t k = 0; k < estimates.size(); ++k) {
     if (!estimates[k].ate.success) continue;
@@ -236,6 +237,7 @@ std::string PlotEvaluation(const std::vector<EvaluationReport>& reports,
     return "";
   const std::vector<StampedPose> gt = ReadTrajectory(reports.front().groundtruth_path).poses;
   std::vector<PlottedEstimate> estimates;
+  estimates.reserve(reports.size());
   for (const EvaluationReport& r : reports)
     estimates.push_back({r.estimate_path, ReadTrajectory(r.estimate_path).poses, r.ate});
   const double t_offset_s = reports.front().options.t_offset_s;

@@ -80,6 +80,7 @@ std::vector<CalibrationEntry> ListCalibrations() {
     }
   }
   std::vector<CalibrationEntry> entries;
+  entries.reserve(by_name.size());
   for (auto& [name, entry] : by_name) entries.push_back(std::move(entry));
   return entries;
 }

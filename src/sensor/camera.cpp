@@ -31,7 +31,7 @@ Eigen::Vector2d Distort(const Calibration& c, const Eigen::Vector2d& x) {
 }  // namespace
 
 Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
-  const Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
   if (!HasDistortion(c)) return distorted;
   Eigen::Vector2d x = distorted;
   for (int i = 0; i < 20; ++i) x += distorted - Distort(c, x);

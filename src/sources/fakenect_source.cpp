@@ -37,6 +37,7 @@ std::vector<std::string> ListFakenectFiles(const std::string& folder) {
   }
   std::sort(files.begin(), files.end());
   std::vector<std::string> names;
+  names.reserve(files.size());
   for (auto& f : files) names.push_back(std::move(f.second));
   return names;
 }

@@ -3,17 +3,18 @@
 #include <stdlib.h>  // mkdtemp (POSIX)
 
 #include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 namespace rgbdvo {
 
 std::string MakeTempDir(const std::string& prefix) {
   std::string tmpl = (std::filesystem::temp_directory_path() / (prefix + "XXXXXX")).string();
   if (!mkdtemp(tmpl.data()))
-    throw std::runtime_error(tmpl + ": cannot create a temporary folder (" + std::strerror(errno) +
-                             ")");
+    // The error's text through the standard library (strerror_r), not strerror: thread-safe.
+    throw std::runtime_error(tmpl + ": cannot create a temporary folder (" +
+                             std::generic_category().message(errno) + ")");
   return tmpl;
 }
 

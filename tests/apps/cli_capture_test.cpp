@@ -40,7 +40,7 @@ std::vector<Rigid3d> ReadTumPoses(const std::string& path) {
 const std::string& Recording(std::vector<Rigid3d>* truth = nullptr) {
   static std::vector<Rigid3d> ir_poses;
   static const std::string dir = [] {
-    const std::string d = MakeTempDir("kinect") + "/rec";
+    std::string d = MakeTempDir("kinect") + "/rec";
     ir_poses = WriteSyntheticKinectRecording(d, SyntheticScene(), SyntheticKinectOptions(),
                                              MakeKinectRangePath(kFrames));
     return d;

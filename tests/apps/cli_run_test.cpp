@@ -38,13 +38,13 @@ std::string Run(const std::string& args, int* code) {
 
 // A 6-frame synthetic TUM folder.
 std::string SyntheticFolder() {
-  const std::string dir = MakeTempDir("cli");
+  std::string dir = MakeTempDir("cli");
   WriteTumSequence(dir, SyntheticScene(), PinholeCamera(), MakeSmoothPath(6));
   return dir;
 }
 
 std::string SyntheticCalib(const std::string& dir) {
-  const std::string path = dir + "/calib.yaml";
+  std::string path = dir + "/calib.yaml";
   std::ofstream(path) << "%YAML:1.0\n---\nA: 1.\nB: 0.\nC: 1.\nD: 0.\n"
                          "K_ir: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
                          "   data: [ 525., 0., 319.5, 0., 525., 239.5, 0., 0., 1. ]\n"
@@ -211,7 +211,7 @@ TEST_CASE(
     CHECK(rows.size() < 25);  // stopped before the end of the 24 frames
     for (const std::string& row : rows) CHECK(std::count(row.begin(), row.end(), ',') == 11);
     for (const std::string& row : tum)
-      if (row.rfind("#", 0) != 0) CHECK(std::count(row.begin(), row.end(), ' ') == 7);
+      if (row.rfind('#', 0) != 0) CHECK(std::count(row.begin(), row.end(), ' ') == 7);
     CHECK(Slurp(dir + "/t.csv").back() == '\n');
     CHECK(Slurp(dir + "/t.txt").back() == '\n');
     if (killed) continue;

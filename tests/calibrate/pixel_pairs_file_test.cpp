@@ -10,7 +10,7 @@ using namespace rgbdvo;
 namespace {
 std::string Write(const std::string& text) {
   static int n = 0;
-  const std::string path = test::MakeTempDir("pairs") + "/p" + std::to_string(n++) + ".csv";
+  std::string path = test::MakeTempDir("pairs") + "/p" + std::to_string(n++) + ".csv";
   std::ofstream(path) << text;
   return path;
 }

@@ -22,6 +22,7 @@ Rigid3d Pose(double yaw_deg, const Eigen::Vector3d& t) {
 template <typename F>
 std::vector<StampedPose> Sampled(int n, double t0, F f) {
   std::vector<StampedPose> out;
+  out.reserve(n);
   for (int k = 0; k < n; ++k) out.push_back({t0 + 0.1 * k, f(0.1 * k)});
   return out;
 }
@@ -384,6 +385,7 @@ TEST_CASE("Repeated timestamps count and match as in the file read back") {
   // truth pose 0.01 s away.
   const auto gt = Sampled(30, 0.0, [](double t) { return Pose(0, {t, 0, 0}); });
   std::vector<StampedPose> gt100;  // 100 Hz ground truth
+  gt100.reserve(300);
   for (int k = 0; k < 300; ++k) gt100.push_back({0.01 * k, Pose(0, {0.01 * k, 0, 0})});
   std::vector<StampedPose> est = gt;
   est.insert(est.begin() + 5, {est[5].timestamp, Pose(0, {9, 9, 9})});  // dropped: not the last

@@ -100,16 +100,16 @@ TEST_CASE("PlotTrajectory leaves no temporary files, also when gnuplot fails") {
   const std::string tmp = MakeTempDir("plot_tmpdir"), out = MakeTempDir("plot");
   const char* old = std::getenv("TMPDIR");
   const std::string saved = old ? old : "";
-  setenv("TMPDIR", tmp.c_str(), 1);
+  setenv("TMPDIR", tmp.c_str(), 1);  // NOLINT(concurrency-mt-unsafe): no other thread runs here
   PlotTrajectory(Circle(1, Rigid3d::Identity()), {}, out + "/a.png", {});
   PlotOptions failing;
   failing.gnuplot = "false";  // starts, exits 1
   CHECK_THROWS_WITH(PlotTrajectory(Circle(1, Rigid3d::Identity()), {}, out + "/b.png", failing),
                     Catch::Contains("failed (exit 1)") && Catch::Contains("b.png"));
   if (old)
-    setenv("TMPDIR", saved.c_str(), 1);
+    setenv("TMPDIR", saved.c_str(), 1);  // NOLINT(concurrency-mt-unsafe): no other thread runs here
   else
-    unsetenv("TMPDIR");
+    unsetenv("TMPDIR");  // NOLINT(concurrency-mt-unsafe): no other thread runs here
   CHECK(std::filesystem::is_empty(tmp));
 }
 

@@ -65,6 +65,7 @@ TEST_CASE("SiftExtractor gives the same features from several threads at once") 
   const Features alone = extractor.Extract(image);
   std::vector<Features> results(4);
   std::vector<std::thread> threads;
+  threads.reserve(results.size());
   for (Features& r : results) threads.emplace_back([&] { r = extractor.Extract(image); });
   for (std::thread& t : threads) t.join();
   for (const Features& r : results) {

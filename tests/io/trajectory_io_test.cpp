@@ -15,7 +15,7 @@ using namespace rgbdvo::test;
 namespace {
 
 std::string WriteFile(const std::string& name, const std::string& text) {
-  const std::string path = MakeTempDir("traj_io") + "/" + name;
+  std::string path = MakeTempDir("traj_io") + "/" + name;
   std::ofstream(path) << text;
   return path;
 }
@@ -86,6 +86,7 @@ TEST_CASE("Of rows with the same timestamp the last one is kept, as in the TUM t
 TEST_CASE("A written TUM trajectory reads back") {
   std::mt19937 rng(3);
   std::vector<StampedPose> poses;
+  poses.reserve(5);
   for (int k = 0; k < 5; ++k) poses.push_back({10 + 0.1 * k, RandomRigid(rng, 0.5, 1.0)});
   const std::string path = MakeTempDir("traj_io") + "/w.txt";
   WriteTumTrajectory(path, poses);

@@ -86,6 +86,7 @@ TEST_CASE("The depth term keeps a synthetic path as exact as the features alone"
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(15, 0.02, 1.5);
   std::vector<Frame> frames;
+  frames.reserve(path.size());
   for (int i = 0; i < static_cast<int>(path.size()); ++i)
     frames.push_back(Render(scene, cam, path[i], i));
   const auto final_error_m = [&](int depth_term_step) {

@@ -204,6 +204,7 @@ TEST_CASE("ErrorHistogram quantiles are within one bin of the exact ones") {
   ErrorHistogram h;
   CHECK(h.Quantile(0.5) == 0);
   std::vector<double> values;
+  values.reserve(5001);
   std::mt19937 rng(11);
   std::exponential_distribution<double> e(0.3);  // mean 3.3 px, a tail beyond 100 px is rare
   for (int k = 0; k < 5000; ++k) values.push_back(e(rng));

@@ -18,12 +18,15 @@ class CalibPathEnv {
  public:
   explicit CalibPathEnv(const std::string& value) {
     if (const char* old = std::getenv("RGBDVO_CALIB_PATH")) old_ = old;
+    // NOLINTNEXTLINE(concurrency-mt-unsafe): no other thread runs here
     setenv("RGBDVO_CALIB_PATH", value.c_str(), 1);
   }
   ~CalibPathEnv() {
     if (old_)
+      // NOLINTNEXTLINE(concurrency-mt-unsafe): no other thread runs here
       setenv("RGBDVO_CALIB_PATH", old_->c_str(), 1);
     else
+      // NOLINTNEXTLINE(concurrency-mt-unsafe): no other thread runs here
       unsetenv("RGBDVO_CALIB_PATH");
   }
 
@@ -35,7 +38,7 @@ std::string SaveNamed(const std::string& folder, const std::string& name, double
   Calibration c;
   c.fx = fx;
   c.description = "camera " + name;
-  const std::string path = folder + "/" + name + ".yaml";
+  std::string path = folder + "/" + name + ".yaml";
   SaveCalibration(c, path);
   return path;
 }

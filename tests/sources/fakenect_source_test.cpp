@@ -27,7 +27,7 @@ SyntheticKinectOptions Small() {
 }
 
 std::string SmallRecording(const std::string& tag, int n) {
-  const std::string dir = MakeTempDir(tag) + "/rec";
+  std::string dir = MakeTempDir(tag) + "/rec";
   WriteSyntheticKinectRecording(dir, SyntheticScene(), Small(), MakeKinectRangePath(n));
   return dir;
 }

@@ -12,7 +12,8 @@ namespace {
 using Pairer = StreamPairer<int>;
 
 // Runs a stream ("r" or "d", time in ms, id) and returns (colour id, depth id) pairs.
-std::vector<std::pair<int, int>> RunStream(Pairer& p, std::vector<std::tuple<char, int, int>> s) {
+std::vector<std::pair<int, int>> RunStream(Pairer& p,
+                                           const std::vector<std::tuple<char, int, int>>& s) {
   std::vector<std::pair<int, int>> out;
   auto take = [&](const std::vector<StampedPair<int>>& done) {
     for (const auto& d : done) out.emplace_back(d.color.value, d.depth.value);

@@ -15,7 +15,7 @@ namespace {
 // A tiny TUM folder: rgb frames at the given times, depth frames at the given times.
 std::string MakeFolder(const std::vector<double>& rgb_t, const std::vector<double>& depth_t,
                        cv::Size depth_size = {64, 48}) {
-  const std::string dir = test::MakeTempDir("tum");
+  std::string dir = test::MakeTempDir("tum");
   fs::create_directories(dir + "/rgb");
   fs::create_directories(dir + "/depth");
   std::ofstream rgb(dir + "/rgb.txt"), depth(dir + "/depth.txt");

@@ -24,8 +24,9 @@
 #include "rgbdvo/sources/stream_pairer.hpp"
 #include "rgbdvo/util/bounded_queue.hpp"
 
-struct _freenect_context;
-struct _freenect_device;
+// libfreenect's own (reserved) struct names, declared here to keep its header out of ours.
+struct _freenect_context;  // NOLINT(bugprone-reserved-identifier)
+struct _freenect_device;   // NOLINT(bugprone-reserved-identifier)
 
 namespace rgbdvo {
 
@@ -103,7 +104,7 @@ class KinectSource : public FrameSource {
     cv::Mat data;  // image, or the accelerometer state's bytes as one row
   };
   void HandleFrame(bool is_depth, const void* data, uint32_t timestamp);
-  void Record(RecordJob job);
+  void Record(const RecordJob& job);
   void RecordLoop();
   void SetError(std::exception_ptr error);
   void Deliver(std::vector<StampedPair<LiveFrame>> pairs);

@@ -140,6 +140,7 @@ void Sift::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* key
     keep.resize(options_.max_features);
     std::sort(keep.begin(), keep.end());
     std::vector<cv::KeyPoint> kept;
+    kept.reserve(keep.size());
     for (int i : keep) kept.push_back((*keypoints)[i]);
     keypoints->swap(kept);
     n = options_.max_features;
