@@ -5,21 +5,23 @@
 
 #include "commands.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int Main(int argc, char** argv) {
   // OpenCV's own log lines ([ WARN:0@...] ...) would interleave with ours; errors we report.
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
   CLI::App app{"rgbdvo: visual odometry for Kinect-style RGB-D cameras (Fiala & Ufkes 2011)"};
-  app.set_version_flag("--version", "rgbdvo " RGBDVO_VERSION);
-  app.require_subcommand(1);
-  rgbdvo::cli::AddRunCommand(app);
-  rgbdvo::cli::AddCalibrateCommand(app);
-  rgbdvo::cli::AddEvalCommand(app);
-  rgbdvo::cli::AddPlotCommand(app);
-  rgbdvo::cli::AddCaptureCommand(app);
-  rgbdvo::cli::AddSynthKinectCommand(app);
-  rgbdvo::cli::AddCalibrationsCommand(app);
-  rgbdvo::cli::AddInfoCommand(app);
   try {
+    app.set_version_flag("--version", "rgbdvo " RGBDVO_VERSION);
+    app.require_subcommand(1);
+    rgbdvo::cli::AddRunCommand(app);
+    rgbdvo::cli::AddCalibrateCommand(app);
+    rgbdvo::cli::AddEvalCommand(app);
+    rgbdvo::cli::AddPlotCommand(app);
+    rgbdvo::cli::AddCaptureCommand(app);
+    rgbdvo::cli::AddSynthKinectCommand(app);
+    rgbdvo::cli::AddCalibrationsCommand(app);
+    rgbdvo::cli::AddInfoCommand(app);
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {
     // A subcommand's own exit code (its message is already printed): 3 = Kinect lost,
@@ -36,4 +38,14 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (...) {  // from the error reporting itself (a failing stream, out of memory)
+    return 1;
+  }
 }

@@ -131,6 +131,7 @@ std::vector<BagTopic> ListBagTopics(const std::string& path) {
       t.first_s = view.getBeginTime().toSec(), t.last_s = view.getEndTime().toSec();
   }
   std::vector<BagTopic> list;
+  list.reserve(topics.size());
   for (auto& [name, t] : topics) list.push_back(t);
   return list;
 }

@@ -18,7 +18,7 @@ cv::Mat FirstDepthRaw() {
   const std::string dir = test::SourceDir() + "/data/tum_fr1_xyz_first30";
   const std::vector<TumListEntry> list = ReadTumList(dir + "/depth.txt");
   REQUIRE_FALSE(list.empty());
-  const cv::Mat raw = cv::imread(dir + "/" + list.front().path, cv::IMREAD_UNCHANGED);
+  cv::Mat raw = cv::imread(dir + "/" + list.front().path, cv::IMREAD_UNCHANGED);
   REQUIRE(raw.type() == CV_16UC1);
   return raw;
 }
