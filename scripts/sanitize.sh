@@ -12,7 +12,8 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-
 cmake --build build-asan -j"$jobs" --target rgbdvo rgbdvo_tests
 # fakenect's library is preloaded into rgbdvo by the capture tests: ASan's runtime is then not
 # first in the library list, which is harmless here. Left out: the fuzz replays (scripts/fuzz.sh
-# runs those parsers under ASan and UBSan) and the calibration window under Xvfb (timing-bound).
+# runs those parsers under ASan and UBSan), the calibration window under Xvfb (timing-bound) and
+# the install test (it checks packaging: man page, .deb; it runs in the plain suite).
 ASAN_OPTIONS=verify_asan_link_order=0:detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --test-dir build-asan --output-on-failure -j2 -E '^fuzz_replay_|^calibrate_gui$'
+    ctest --test-dir build-asan --output-on-failure -j2 -E '^fuzz_replay_|^calibrate_gui$|^install_package$'
 echo "sanitize: ASan+UBSan suite passed"
