@@ -146,7 +146,6 @@ struct RosbagSource::Impl {
   std::deque<TimedPair<ImagePtr>> ready;
   size_t color_messages = 0, depth_messages = 0;
   std::optional<Calibration> calib;
-  std::string color_encoding, depth_encoding;
   int next_index = 0;
   bool finished = false;
 
@@ -252,8 +251,6 @@ std::optional<Frame> RosbagSource::Next() {
                              std::to_string(f.depth_m.cols) + "x" + std::to_string(f.depth_m.rows) +
                              " but the colour image is " + std::to_string(f.bgr.cols) + "x" +
                              std::to_string(f.bgr.rows));
-  s.color_encoding = p.color->encoding;
-  s.depth_encoding = p.depth->encoding;
   std::ostringstream name;
   name.precision(17);
   name << s.options.rgb_topic << "@" << p.color_s;
