@@ -93,16 +93,21 @@ wait "$app_pid" || fail "rgbdvo calibrate exited with status $?"
 app_pid=""
 cat "$work/app.log"
 
+# Each pair keeps the depth under its IR click (a fifth column, z_ir_m, metres).
 expected="u_vis,v_vis,u_ir,v_ir
 110,120,119,138
 300,200,290,210
 500,400,470,390
 200,350,200,345"
-[ "$(cat "$work/c.pairs.csv")" = "$expected" ] ||
+[ "$(cut -d, -f1-4 "$work/c.pairs.csv")" = "$expected" ] ||
   fail "saved pairs differ; got:
 $(cat "$work/c.pairs.csv")
 expected:
 $expected"
+[ "$(head -n 1 "$work/c.pairs.csv")" = "u_vis,v_vis,u_ir,v_ir,z_ir_m" ] ||
+  fail "saved pairs have no depth column"
+awk -F, 'NR > 1 && !($5 > 0.4 && $5 < 8) { bad = 1 } END { exit bad }' "$work/c.pairs.csv" ||
+  fail "a saved pair's depth is not a depth of the recording"
 # The fit recovers the mapping exactly (the clicks are exact pixels) and keeps K_ir of the base.
 check() {
   local got

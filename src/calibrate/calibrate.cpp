@@ -14,8 +14,10 @@ Calibration ApplyMappingFit(const Calibration& base, const MappingFit& fit,
   if (!fit.success) throw std::invalid_argument("ApplyMappingFit: the fit failed: " + fit.reason);
   Calibration c = base;
   c.A = fit.A, c.B = fit.B, c.C = fit.C, c.D = fit.D;
+  c.s_u = fit.s_u, c.s_v = fit.s_v;
   std::ostringstream d;
-  d << "A-D fitted by rgbdvo calibrate from " << fit.num_inliers << " pairs";
+  d << (fit.depth_aware ? "A-D and s_u, s_v" : "A-D") << " fitted by rgbdvo calibrate from "
+    << fit.num_inliers << " pairs";
   if (!pairs_note.empty()) d << " (" << pairs_note << ")";
   d << ", RMS " << std::setprecision(3) << fit.rms_px << " px.";
   if (!base.description.empty()) d << " Other fields: " << base.description;
@@ -28,12 +30,15 @@ std::string FitReport(const MappingFit& fit, const std::vector<PixelPair>& pairs
   std::ostringstream s;
   s << fit.Brief() << "\n";
   if (!fit.success) return s.str();
-  s << "pair  u_vis   v_vis   u_ir    v_ir    residual_px\n";
+  bool depths = false;
+  for (const PixelPair& p : pairs) depths = depths || p.z_ir_m > 0;
+  s << "pair  u_vis   v_vis   u_ir    v_ir  " << (depths ? "  z_ir_m" : "") << "  residual_px\n";
   for (size_t i = 0; i < pairs.size(); ++i) {
     const PixelPair& p = pairs[i];
     s << std::setw(4) << i + 1 << std::fixed << std::setprecision(1) << std::setw(8) << p.u_vis
-      << std::setw(8) << p.v_vis << std::setw(8) << p.u_ir << std::setw(8) << p.v_ir
-      << std::setprecision(2) << std::setw(10) << fit.residual_px[i]
+      << std::setw(8) << p.v_vis << std::setw(8) << p.u_ir << std::setw(8) << p.v_ir;
+    if (depths) s << std::setprecision(3) << std::setw(8) << p.z_ir_m;
+    s << std::setprecision(2) << std::setw(10) << fit.residual_px[i]
       << (fit.outlier[i] ? "  outlier (not used)" : "") << "\n";
     s.unsetf(std::ios::fixed);
   }

@@ -1,10 +1,14 @@
 #include "rgbdvo/calibrate/calibration_clicker.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 #include <utility>
+
+#include "rgbdvo/sensor/camera.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -85,9 +89,22 @@ CalibrationClicker::CalibrationClicker(const ClickerOptions& options,
   Refit();
 }
 
+double NearestDepth(const cv::Mat& depth_m, const cv::Point2d& pt) {
+  if (depth_m.empty()) return 0;
+  const int u = static_cast<int>(std::lround(pt.x)), v = static_cast<int>(std::lround(pt.y));
+  float nearest = 0;
+  for (int r = std::max(0, v - 1); r <= std::min(depth_m.rows - 1, v + 1); ++r)
+    for (int c = std::max(0, u - 1); c <= std::min(depth_m.cols - 1, u + 1); ++c) {
+      const float d = depth_m.at<float>(r, c);
+      if (d > 0 && (nearest == 0 || d < nearest)) nearest = d;
+    }
+  return nearest;
+}
+
 void CalibrationClicker::SetFrame(const Frame& frame) {
   vis_bgr_ = frame.bgr.clone();
   depth_bgr_ = ColorizeDepth(frame.depth_m);
+  depth_m_ = frame.depth_m.clone();
   frame_index_ = frame.index;
   timestamp_ = frame.timestamp;
   pending_.reset();
@@ -138,7 +155,8 @@ void CalibrationClicker::Click(int x, int y) {
   }
   const Pending& vis = at->ir ? *pending_ : *at;
   const Pending& ir = at->ir ? *at : *pending_;
-  pairs_.push_back({{vis.pt.x, vis.pt.y, ir.pt.x, ir.pt.y}, frame_index_});
+  pairs_.push_back(
+      {{vis.pt.x, vis.pt.y, ir.pt.x, ir.pt.y, NearestDepth(depth_m_, ir.pt)}, frame_index_});
   pending_.reset();
   dirty_ = true;
   Refit();
@@ -243,8 +261,10 @@ cv::Mat CalibrationClicker::Render() const {
     const cv::Point2d ir = ToCanvas({p.u_ir, p.v_ir}, true);
     Marker(canvas, ir, colour, label);
     if (fit_.success) {  // where the fit puts the twin, and the residual as a line
-      const cv::Point2d pred =
-          ToCanvas({fit_.A * p.u_vis + fit_.B, fit_.C * p.v_vis + fit_.D}, true);
+      const double w = p.z_ir_m > 0 ? 1.0 / p.z_ir_m : 0.0;
+      const cv::Point2d pred = ToCanvas(
+          {fit_.A * p.u_vis + fit_.B + fit_.s_u * w, fit_.C * p.v_vis + fit_.D + fit_.s_v * w},
+          true);
       cv::line(canvas, ir, pred, kPredicted, 1, cv::LINE_AA);
       Cross(canvas, pred, kPredicted);
     }
@@ -252,11 +272,19 @@ cv::Mat CalibrationClicker::Render() const {
   if (pending_) {
     Marker(canvas, ToCanvas(pending_->pt, pending_->ir), kPending, "?");
     if (fit_.success) {
-      const cv::Point2d& q = pending_->pt;
-      const cv::Point2d twin = pending_->ir
-                                   ? cv::Point2d((q.x - fit_.B) / fit_.A, (q.y - fit_.D) / fit_.C)
-                                   : cv::Point2d(fit_.A * q.x + fit_.B, fit_.C * q.y + fit_.D);
-      Cross(canvas, ToCanvas(twin, !pending_->ir), kPending);
+      // The twin through the fitted mapping, at the depth the depth image gives.
+      Calibration mapping;
+      mapping.A = fit_.A, mapping.B = fit_.B, mapping.C = fit_.C, mapping.D = fit_.D;
+      mapping.s_u = fit_.s_u, mapping.s_v = fit_.s_v;
+      const Eigen::Vector2d q(pending_->pt.x, pending_->pt.y);
+      std::optional<Eigen::Vector2d> twin;
+      if (pending_->ir) {
+        const double z = NearestDepth(depth_m_, pending_->pt);
+        twin = IrToColor(mapping, q, z > 0 ? z : kInfiniteDepth);
+      } else {
+        twin = depth_m_.empty() ? ColorToIr(mapping, q) : FindIrPixel(mapping, depth_m_, q);
+      }
+      if (twin) Cross(canvas, ToCanvas({twin->x(), twin->y()}, !pending_->ir), kPending);
     }
   }
   DrawPanel(canvas);

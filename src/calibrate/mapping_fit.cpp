@@ -1,5 +1,6 @@
 #include "rgbdvo/calibrate/mapping_fit.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -9,7 +10,7 @@ namespace rgbdvo {
 namespace {
 
 struct Line {
-  double scale = 1, offset = 0;
+  double scale = 1, offset = 0, disparity = 0;
 };
 
 // Least squares y = scale * x + offset over the pairs with use[i]; centred sums for accuracy.
@@ -29,6 +30,30 @@ Line FitLine(const std::vector<double>& x, const std::vector<double>& y,
   return l;
 }
 
+// Least squares y = scale * x + offset + disparity * w over the pairs with use[i] (w = 1/z),
+// on centred values: the 2x2 normal equations of scale and disparity, then the offset.
+Line FitLineWithDisparity(const std::vector<double>& x, const std::vector<double>& w,
+                          const std::vector<double>& y, const std::vector<bool>& use) {
+  double n = 0, mx = 0, mw = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i)
+    if (use[i]) n += 1, mx += x[i], mw += w[i], my += y[i];
+  mx /= n, mw /= n, my /= n;
+  Eigen::Matrix2d N = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (!use[i]) continue;
+    const Eigen::Vector2d a(x[i] - mx, w[i] - mw);
+    N += a * a.transpose();
+    b += a * (y[i] - my);
+  }
+  const Eigen::Vector2d sol = N.ldlt().solve(b);
+  Line l;
+  l.scale = sol(0);
+  l.disparity = sol(1);
+  l.offset = my - l.scale * mx - l.disparity * mw;
+  return l;
+}
+
 double Spread(const std::vector<double>& x, const std::vector<bool>& use) {
   double lo = INFINITY, hi = -INFINITY;
   for (size_t i = 0; i < x.size(); ++i)
@@ -45,13 +70,16 @@ void MappingFitOptions::Check() const {
   if (!(min_spread_px > 0))
     throw std::invalid_argument("MappingFitOptions.min_spread_px must be > 0");
   if (!(outlier_px > 0)) throw std::invalid_argument("MappingFitOptions.outlier_px must be > 0");
+  if (!(min_inverse_depth_spread > 0))
+    throw std::invalid_argument("MappingFitOptions.min_inverse_depth_spread must be > 0");
 }
 
 std::string MappingFit::Brief() const {
   std::ostringstream s;
   if (!success) return "fit failed: " + reason;
-  s << "A=" << A << " B=" << B << " C=" << C << " D=" << D << " from " << num_inliers << " of "
-    << num_pairs << " pairs";
+  s << "A=" << A << " B=" << B << " C=" << C << " D=" << D;
+  if (depth_aware) s << " s_u=" << s_u << " s_v=" << s_v << " px m";
+  s << " from " << num_inliers << " of " << num_pairs << " pairs";
   if (num_inliers < num_pairs) s << " (" << num_pairs - num_inliers << " outlier(s) set aside)";
   s << ", RMS " << rms_px << " px";
   return s.str();
@@ -66,13 +94,18 @@ MappingFit FitMapping(const MappingFitOptions& options, const std::vector<PixelP
                  std::to_string(fit.num_pairs);
     return fit;
   }
-  std::vector<double> uv, ui, vv, vi;
+  std::vector<double> uv, ui, vv, vi, w;
+  bool all_depths = true;
   for (const PixelPair& p : pairs) {
-    for (double x : {p.u_vis, p.v_vis, p.u_ir, p.v_ir})
+    for (double x : {p.u_vis, p.v_vis, p.u_ir, p.v_ir, p.z_ir_m})
       if (!std::isfinite(x)) throw std::invalid_argument("pixel pair with a non-finite coordinate");
     uv.push_back(p.u_vis), ui.push_back(p.u_ir), vv.push_back(p.v_vis), vi.push_back(p.v_ir);
+    all_depths = all_depths && p.z_ir_m > 0;
+    w.push_back(p.z_ir_m > 0 ? 1.0 / p.z_ir_m : 0.0);
   }
   std::vector<bool> use(pairs.size(), true);
+  fit.depth_aware =
+      options.fit_disparity && all_depths && Spread(w, use) >= options.min_inverse_depth_spread;
   const auto spread_ok = [&](const std::vector<double>& x, const char* name) {
     const double s = Spread(x, use);
     if (s >= options.min_spread_px) return true;
@@ -86,11 +119,14 @@ MappingFit FitMapping(const MappingFitOptions& options, const std::vector<PixelP
 
   std::vector<double> residual(pairs.size());
   for (;;) {
-    const Line u = FitLine(uv, ui, use), v = FitLine(vv, vi, use);
+    const Line u = fit.depth_aware ? FitLineWithDisparity(uv, w, ui, use) : FitLine(uv, ui, use);
+    const Line v = fit.depth_aware ? FitLineWithDisparity(vv, w, vi, use) : FitLine(vv, vi, use);
     fit.A = u.scale, fit.B = u.offset, fit.C = v.scale, fit.D = v.offset;
+    fit.s_u = u.disparity, fit.s_v = v.disparity;
     int worst = -1;
     for (size_t i = 0; i < pairs.size(); ++i) {
-      residual[i] = std::hypot(fit.A * uv[i] + fit.B - ui[i], fit.C * vv[i] + fit.D - vi[i]);
+      residual[i] = std::hypot(fit.A * uv[i] + fit.B + fit.s_u * w[i] - ui[i],
+                               fit.C * vv[i] + fit.D + fit.s_v * w[i] - vi[i]);
       if (use[i] && (worst < 0 || residual[i] > residual[worst])) worst = static_cast<int>(i);
     }
     const int inliers = static_cast<int>(std::count(use.begin(), use.end(), true));
@@ -98,7 +134,10 @@ MappingFit FitMapping(const MappingFitOptions& options, const std::vector<PixelP
       break;
     // Set the worst pair aside unless that leaves the remaining ones degenerate.
     use[worst] = false;
-    if (Spread(uv, use) < options.min_spread_px || Spread(vv, use) < options.min_spread_px) {
+    const int left = inliers - 1;
+    if (Spread(uv, use) < options.min_spread_px || Spread(vv, use) < options.min_spread_px ||
+        (fit.depth_aware &&
+         (Spread(w, use) < options.min_inverse_depth_spread || left <= options.min_pairs))) {
       use[worst] = true;
       break;
     }

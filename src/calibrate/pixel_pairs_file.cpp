@@ -11,6 +11,7 @@ namespace rgbdvo {
 namespace {
 
 constexpr const char* kHeader = "u_vis,v_vis,u_ir,v_ir";
+constexpr const char* kHeaderWithDepth = "u_vis,v_vis,u_ir,v_ir,z_ir_m";
 
 }  // namespace
 
@@ -19,6 +20,7 @@ std::vector<PixelPair> LoadPixelPairs(const std::string& path) {
   if (!in) throw std::runtime_error(path + ": cannot open pairs file");
   std::vector<PixelPair> pairs;
   bool header_seen = false;
+  size_t columns = 4;
   int line_no = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
@@ -29,9 +31,10 @@ std::vector<PixelPair> LoadPixelPairs(const std::string& path) {
       std::string compact;
       for (char c : line)
         if (c != ' ' && c != '\t') compact += c;
-      if (compact != kHeader)
-        throw std::runtime_error(where + ": expected the header '" + kHeader + "', got '" + line +
-                                 "'");
+      if (compact != kHeader && compact != kHeaderWithDepth)
+        throw std::runtime_error(where + ": expected the header '" + kHeader + "' or '" +
+                                 kHeaderWithDepth + "', got '" + line + "'");
+      columns = compact == kHeader ? 4 : 5;
       header_seen = true;
       continue;
     }
@@ -39,14 +42,20 @@ std::vector<PixelPair> LoadPixelPairs(const std::string& path) {
     std::stringstream ss(line);
     for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
     if (line.back() == ',') fields.push_back("");
-    if (fields.size() != 4)
-      throw std::runtime_error(where + ": expected 4 comma-separated numbers (" + kHeader +
-                               "), got " + std::to_string(fields.size()) + " fields");
+    if (fields.size() != columns)
+      throw std::runtime_error(where + ": expected " + std::to_string(columns) +
+                               " comma-separated numbers (" +
+                               (columns == 4 ? kHeader : kHeaderWithDepth) + "), got " +
+                               std::to_string(fields.size()) + " fields");
     PixelPair p;
     p.u_vis = ParseNumber(fields[0], where);
     p.v_vis = ParseNumber(fields[1], where);
     p.u_ir = ParseNumber(fields[2], where);
     p.v_ir = ParseNumber(fields[3], where);
+    if (columns == 5) {
+      p.z_ir_m = ParseNumber(fields[4], where);
+      if (!(p.z_ir_m >= 0)) throw std::runtime_error(where + ": z_ir_m must be >= 0 (0: unknown)");
+    }
     pairs.push_back(p);
   }
   if (!header_seen)
@@ -58,9 +67,14 @@ void SavePixelPairs(const std::vector<PixelPair>& pairs, const std::string& path
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write pairs file");
   out.precision(10);
-  out << kHeader << "\n";
-  for (const PixelPair& p : pairs)
-    out << p.u_vis << "," << p.v_vis << "," << p.u_ir << "," << p.v_ir << "\n";
+  bool depths = false;
+  for (const PixelPair& p : pairs) depths = depths || p.z_ir_m > 0;
+  out << (depths ? kHeaderWithDepth : kHeader) << "\n";
+  for (const PixelPair& p : pairs) {
+    out << p.u_vis << "," << p.v_vis << "," << p.u_ir << "," << p.v_ir;
+    if (depths) out << "," << p.z_ir_m;
+    out << "\n";
+  }
   out.flush();
   if (!out) throw std::runtime_error(path + ": error while writing pairs file");
 }

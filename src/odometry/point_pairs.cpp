@@ -30,21 +30,23 @@ KeypointPoints LiftKeypointsAcrossTime(const Calibration& calib, const LiftOptio
   const auto lift_at =
       [&](const Eigen::Vector3d& p_in_depth_cam) -> std::optional<Eigen::Vector3d> {
     if (!(p_in_depth_cam.z() > 0)) return std::nullopt;
-    const Eigen::Vector2d uv = IrToColor(calib, ProjectIr(calib, p_in_depth_cam));
+    const Eigen::Vector2d uv =
+        IrToColor(calib, ProjectIr(calib, p_in_depth_cam), p_in_depth_cam.z());
     if (!uv.allFinite()) return std::nullopt;
     return LiftColorPixel(calib, depth_m, uv, options.max_depth_jump_ratio);
   };
   KeypointPoints points;
   points.reserve(features.size());
   for (const cv::KeyPoint& k : features.keypoints) {
-    const Eigen::Vector2d xy = NormalizeIr(calib, ColorToIr(calib, {k.pt.x, k.pt.y}));
-    const Eigen::Vector3d ray(xy.x(), xy.y(), 1.0);  // in the colour-time camera
-    std::optional<Eigen::Vector3d> p = lift_at(depth_from_color.linear() * ray);
+    const Eigen::Vector2d uv(k.pt.x, k.pt.y);
+    // The keypoint's ray at 1 m in the colour-time camera, turned with the rotation only.
+    std::optional<Eigen::Vector3d> p =
+        lift_at(depth_from_color.linear() * ColorRayPoint(calib, uv, 1.0));
     if (p) {
       // The depth found puts the point at Z = z_c in the colour-time camera; move it with the
       // whole motion, translation included, and look again.
       const double z_c = (color_from_depth * *p).z();
-      if (z_c > 0) p = lift_at(depth_from_color * (z_c * ray));
+      if (z_c > 0) p = lift_at(depth_from_color * ColorRayPoint(calib, uv, z_c));
     }
     if (p) p = color_from_depth * *p;
     points.push_back(p);
@@ -77,7 +79,7 @@ std::vector<std::optional<Eigen::Vector2d>> PredictKeypoints(const Calibration& 
     if (!ref_points[i]) continue;
     const Eigen::Vector3d p_in_cur = cur_from_ref * *ref_points[i];
     if (!(p_in_cur.z() > 0)) continue;
-    const Eigen::Vector2d uv = IrToColor(calib, ProjectIr(calib, p_in_cur));
+    const Eigen::Vector2d uv = IrToColor(calib, ProjectIr(calib, p_in_cur), p_in_cur.z());
     if (uv.allFinite()) out[i] = uv;
   }
   return out;

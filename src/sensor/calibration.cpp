@@ -215,6 +215,8 @@ Calibration FromCalibrationFields(const CalibrationYaml& yaml, const std::string
   c.B = ReadNumber(yaml, "B", path);
   c.C = ReadNumber(yaml, "C", path);
   c.D = ReadNumber(yaml, "D", path);
+  if (yaml.Find("s_u")) c.s_u = ReadNumber(yaml, "s_u", path);
+  if (yaml.Find("s_v")) c.s_v = ReadNumber(yaml, "s_v", path);
   const YamlNode* k_node = yaml.Find("K_ir");
   if (!k_node) throw std::runtime_error(path + ": missing field 'K_ir'");
   const std::vector<double> K = ReadMatrix(*k_node, "K_ir", 3, 3, path);  // row-major
@@ -273,7 +275,7 @@ Calibration FromCameraInfo(const CalibrationYaml& yaml, const std::string& path)
 }  // namespace
 
 void Calibration::Check() const {
-  for (double v : {A, B, C, D, fx, fy, cx, cy, min_depth_m, max_depth_m})
+  for (double v : {A, B, C, D, s_u, s_v, fx, fy, cx, cy, min_depth_m, max_depth_m})
     Require(std::isfinite(v), "all fields must be finite numbers");
   for (double v : dist_ir) Require(std::isfinite(v), "dist_ir values must be finite numbers");
   Require(A != 0.0, "A must be non-zero (u_ir = A*u + B)");
@@ -334,6 +336,10 @@ void SaveCalibration(const Calibration& c, const std::string& path) {
   if (!c.description.empty()) fs << "description" << c.description;
   fs.writeComment("u_ir = A * u_vis + B, v_ir = C * v_vis + D (Fiala & Ufkes 2011, eq. 1)");
   fs << "A" << c.A << "B" << c.B << "C" << c.C << "D" << c.D;
+  if (c.HasDisparityTerm()) {
+    fs.writeComment("depth-aware: u_ir += s_u / z, v_ir += s_v / z (z: depth, m; s: px m)");
+    fs << "s_u" << c.s_u << "s_v" << c.s_v;
+  }
   const cv::Mat K = (cv::Mat_<double>(3, 3) << c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1);
   fs << "K_ir" << K;
   if (c.dist_ir != std::array<double, 5>{0, 0, 0, 0, 0}) {

@@ -1,15 +1,16 @@
 #include "rgbdvo/sensor/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rgbdvo {
 
-Eigen::Vector2d ColorToIr(const Calibration& c, const Eigen::Vector2d& uv) {
-  return {c.A * uv.x() + c.B, c.C * uv.y() + c.D};
+Eigen::Vector2d ColorToIr(const Calibration& c, const Eigen::Vector2d& uv, double z_m) {
+  return {c.A * uv.x() + c.B + c.s_u / z_m, c.C * uv.y() + c.D + c.s_v / z_m};
 }
 
-Eigen::Vector2d IrToColor(const Calibration& c, const Eigen::Vector2d& uv_ir) {
-  return {(uv_ir.x() - c.B) / c.A, (uv_ir.y() - c.D) / c.C};
+Eigen::Vector2d IrToColor(const Calibration& c, const Eigen::Vector2d& uv_ir, double z_m) {
+  return {(uv_ir.x() - c.B - c.s_u / z_m) / c.A, (uv_ir.y() - c.D - c.s_v / z_m) / c.C};
 }
 
 namespace {
@@ -78,15 +79,43 @@ std::optional<double> SampleDepthBilinear(const Calibration& c, const cv::Mat& d
   return (1 - av) * ((1 - au) * d[0] + au * d[1]) + av * ((1 - au) * d[2] + au * d[3]);
 }
 
+Eigen::Vector3d ColorRayPoint(const Calibration& c, const Eigen::Vector2d& uv_vis, double z_m) {
+  return BackProject(c, ColorToIr(c, uv_vis, z_m), z_m);
+}
+
+std::optional<Eigen::Vector2d> FindIrPixel(const Calibration& c, const cv::Mat& depth_m,
+                                           const Eigen::Vector2d& uv_vis) {
+  const Eigen::Vector2d at_infinity = ColorToIr(c, uv_vis);
+  if (!c.HasDisparityTerm()) return at_infinity;
+  // The ray's IR pixel at inverse depth w = 1/z is at_infinity + s w.
+  const Eigen::Vector2d s(c.s_u, c.s_v);
+  const double w_near = 1.0 / std::max(c.min_depth_m, 0.1), w_far = 1.0 / c.max_depth_m;
+  const int steps = std::max(1, static_cast<int>(std::ceil(s.norm() * (w_near - w_far) / 0.5)));
+  Eigen::Vector2i last(-1, -1);
+  for (int i = 0; i <= steps; ++i) {
+    const double w = w_near - (w_near - w_far) * i / steps;
+    const Eigen::Vector2d uv_ir = at_infinity + s * w;
+    const Eigen::Vector2i pixel(static_cast<int>(std::lround(uv_ir.x())),
+                                static_cast<int>(std::lround(uv_ir.y())));
+    if (pixel == last) continue;
+    last = pixel;
+    const std::optional<double> d = SampleDepth(c, depth_m, uv_ir);
+    if (d && s.norm() * std::abs(1.0 / *d - w) <= 1.0) return ColorToIr(c, uv_vis, *d);
+  }
+  return std::nullopt;
+}
+
 std::optional<Eigen::Vector3d> LiftColorPixel(const Calibration& c, const cv::Mat& depth_m,
                                               const Eigen::Vector2d& uv_vis,
                                               double max_jump_ratio) {
-  const Eigen::Vector2d uv_ir = ColorToIr(c, uv_vis);
+  const std::optional<Eigen::Vector2d> uv_ir = FindIrPixel(c, depth_m, uv_vis);
+  if (!uv_ir) return std::nullopt;
   const std::optional<double> d = max_jump_ratio > 0
-                                      ? SampleDepthBilinear(c, depth_m, uv_ir, max_jump_ratio)
-                                      : SampleDepth(c, depth_m, uv_ir);
+                                      ? SampleDepthBilinear(c, depth_m, *uv_ir, max_jump_ratio)
+                                      : SampleDepth(c, depth_m, *uv_ir);
   if (!d) return std::nullopt;
-  return BackProject(c, uv_ir, *d);
+  if (c.HasDisparityTerm()) return ColorRayPoint(c, uv_vis, *d);
+  return BackProject(c, *uv_ir, *d);
 }
 
 }  // namespace rgbdvo

@@ -29,13 +29,20 @@ void SyntheticKinectOptions::Check() const {
     throw std::invalid_argument("SyntheticKinectOptions.color and .ir sizes must be > 0");
 }
 
-Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& o) {
+Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& o, bool depth_aware) {
   o.Check();
   Calibration c;
   c.A = o.ir.fx / o.color.fx;
   c.C = o.ir.fy / o.color.fy;
-  c.B = o.ir.cx - c.A * o.color.cx - o.ir.fx * o.ir_in_color.x() / o.reference_depth_m;
-  c.D = o.ir.cy - c.C * o.color.cy - o.ir.fy * o.ir_in_color.y() / o.reference_depth_m;
+  if (depth_aware) {
+    c.B = o.ir.cx - c.A * o.color.cx;
+    c.D = o.ir.cy - c.C * o.color.cy;
+    c.s_u = -o.ir.fx * o.ir_in_color.x();
+    c.s_v = -o.ir.fy * o.ir_in_color.y();
+  } else {  // eq. 1 folds the disparity at the reference depth into B and D
+    c.B = o.ir.cx - c.A * o.color.cx - o.ir.fx * o.ir_in_color.x() / o.reference_depth_m;
+    c.D = o.ir.cy - c.C * o.color.cy - o.ir.fy * o.ir_in_color.y() / o.reference_depth_m;
+  }
   c.fx = o.ir.fx;
   c.fy = o.ir.fy;
   c.cx = o.ir.cx;
@@ -43,8 +50,11 @@ Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& o) {
   c.min_depth_m = 0.4;
   c.max_depth_m = 8.0;
   c.description =
-      "rgbdvo synthetic Kinect: IR camera offset from the colour camera; A-D exact at " +
-      std::to_string(o.reference_depth_m) + " m (synthetic_kinect.hpp)";
+      depth_aware
+          ? "rgbdvo synthetic Kinect: IR camera offset from the colour camera; depth-aware "
+            "mapping, exact at every depth (synthetic_kinect.hpp)"
+          : "rgbdvo synthetic Kinect: IR camera offset from the colour camera; A-D exact at " +
+                std::to_string(o.reference_depth_m) + " m (synthetic_kinect.hpp)";
   return c;
 }
 
@@ -99,6 +109,8 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
   }
   if (!gt.flush()) throw std::runtime_error(folder + "/groundtruth.txt: write failed");
   SaveCalibration(calib, (fs::path(folder) / "calib.yaml").string());
+  SaveCalibration(SyntheticKinectCalibration(o, true),
+                  (fs::path(folder) / "calib_depth_aware.yaml").string());
   return ir_poses;
 }
 

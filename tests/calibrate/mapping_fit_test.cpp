@@ -125,3 +125,42 @@ TEST_CASE("MappingFitOptions::Check names the bad field") {
   o.outlier_px = 0;
   CHECK_THROWS_WITH(o.Check(), Catch::Contains("outlier_px"));
 }
+
+TEST_CASE("FitMapping finds the disparity term when the pairs' depths span enough") {
+  // The Kinect's geometry: u_ir = A u + B + s_u / z with s_u = -580 * 0.025, depths 0.8-4 m,
+  // 0.3 px click noise. With a narrow depth span the term is not observable: eq. 1.
+  const double A = 1.105, B = -33.0, C = 1.1, D = -24.0, s_u = -14.5, s_v = 0.6;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(20, 620), v(20, 460), z(0.8, 4.0), near(2.0, 2.2);
+  std::normal_distribution<double> noise(0, 0.3);
+  const auto make = [&](std::uniform_real_distribution<double>& depth) {
+    std::vector<PixelPair> pairs;
+    for (int i = 0; i < 30; ++i) {
+      PixelPair p;
+      p.u_vis = u(rng), p.v_vis = v(rng), p.z_ir_m = depth(rng);
+      p.u_ir = A * p.u_vis + B + s_u / p.z_ir_m + noise(rng);
+      p.v_ir = C * p.v_vis + D + s_v / p.z_ir_m + noise(rng);
+      pairs.push_back(p);
+    }
+    return pairs;
+  };
+  const MappingFit fit = FitMapping({}, make(z));
+  REQUIRE(fit.success);
+  CHECK(fit.depth_aware);
+  CHECK(fit.A == Approx(A).margin(0.002));
+  CHECK(fit.B == Approx(B).margin(1.0));
+  CHECK(fit.s_u == Approx(s_u).margin(0.8));
+  CHECK(fit.s_v == Approx(s_v).margin(0.8));
+  CHECK(fit.rms_px < 0.6);
+  // Eq. 1 on the same pairs leaves the depth-dependent part in the residuals.
+  MappingFitOptions eq1;
+  eq1.fit_disparity = false;
+  const MappingFit plain = FitMapping(eq1, make(z));
+  REQUIRE(plain.success);
+  CHECK_FALSE(plain.depth_aware);
+  CHECK(plain.s_u == 0);
+  CHECK(plain.rms_px > 2 * fit.rms_px);
+  const MappingFit narrow = FitMapping({}, make(near));
+  REQUIRE(narrow.success);
+  CHECK_FALSE(narrow.depth_aware);
+}

@@ -61,3 +61,22 @@ TEST_CASE("Pixel pairs file errors name the file and line") {
   CHECK_THROWS_WITH(LoadPixelPairs("/nonexistent/p.csv"),
                     Catch::Contains("/nonexistent/p.csv: cannot open pairs file"));
 }
+
+TEST_CASE("Pixel pairs file keeps the depths in a fifth column when there are any") {
+  const std::vector<PixelPair> pairs = {{1.25, 2.5, 3.125, 4.0625, 1.5},
+                                        {639.7, 479.3, 600.01, 450.99, 0}};
+  const std::string path = test::MakeTempDir("pairs_z") + "/p.csv";
+  SavePixelPairs(pairs, path);
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  CHECK(header == "u_vis,v_vis,u_ir,v_ir,z_ir_m");
+  const auto back = LoadPixelPairs(path);
+  REQUIRE(back.size() == 2);
+  CHECK(back[0].z_ir_m == 1.5);
+  CHECK(back[1].z_ir_m == 0);
+  CHECK_THROWS_WITH(LoadPixelPairs(Write("u_vis,v_vis,u_ir,v_ir,z_ir_m\n1,2,3,4\n")),
+                    Catch::Contains(":2: expected 5"));
+  CHECK_THROWS_WITH(LoadPixelPairs(Write("u_vis,v_vis,u_ir,v_ir,z_ir_m\n1,2,3,4,-1\n")),
+                    Catch::Contains("z_ir_m must be >= 0"));
+}

@@ -205,3 +205,22 @@ TEST_CASE("A ROS camera_info YAML file is read as the camera of registered depth
                     Catch::Contains("bad_k.yaml") && Catch::Contains("camera_matrix"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("The disparity term round-trips and is 0 when a file leaves it out") {
+  Calibration c;
+  c.s_u = -14.625;
+  c.s_v = 0.25;
+  const std::string path = test::MakeTempDir("calib_s") + "/c.yaml";
+  SaveCalibration(c, path);
+  const Calibration r = LoadCalibration(path);
+  CHECK(r.s_u == c.s_u);
+  CHECK(r.s_v == c.s_v);
+  CHECK(r.HasDisparityTerm());
+  const Calibration plain = LoadCalibration(test::SourceDir() + "/calib/tum_fr1.yaml");
+  CHECK(plain.s_u == 0);
+  CHECK(plain.s_v == 0);
+  CHECK_FALSE(plain.HasDisparityTerm());
+  SaveCalibration(Calibration{}, path);
+  std::ofstream(path, std::ios::app) << "s_u: west\n";
+  CHECK_THROWS_WITH(LoadCalibration(path), Catch::Contains("s_u"));
+}

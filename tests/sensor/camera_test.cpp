@@ -125,3 +125,53 @@ TEST_CASE("Bilinear depth interpolates a slope and refuses a depth edge") {
   CHECK_FALSE(SampleDepthBilinear(c, depth, {3.5, 4.5}, 0.03));
   CHECK(SampleDepthBilinear(c, depth, {1.5, 1.5}, 0.03));
 }
+
+TEST_CASE("The disparity term moves the IR pixel by s / z and IrToColor inverts it") {
+  Calibration c = PaperLike();
+  c.s_u = -14.5;
+  c.s_v = 2.0;
+  const Eigen::Vector2d uv(250, 130);
+  CHECK((ColorToIr(c, uv, 2.0) - ColorToIr(c, uv) - Eigen::Vector2d(-7.25, 1.0)).norm() < 1e-12);
+  for (double z : {0.5, 1.0, 4.0}) CHECK((IrToColor(c, ColorToIr(c, uv, z), z) - uv).norm() < 1e-9);
+  // The colour ray's point at depth z has Z = z and maps back to the colour pixel.
+  const Eigen::Vector3d p = ColorRayPoint(c, uv, 1.5);
+  CHECK(p.z() == Approx(1.5));
+  CHECK((IrToColor(c, ProjectIr(c, p), p.z()) - uv).norm() < 1e-9);
+}
+
+TEST_CASE("FindIrPixel takes the nearest surface on the colour ray that the IR camera sees") {
+  // A wall at 3 m with a box at 1 m in front of IR columns 300-339; A = C = 1, B = D = 0,
+  // s_u = -15 px m: the colour ray of column u meets the IR image at u - 15 / z.
+  Calibration c;
+  c.s_u = -15.0;
+  cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(3.0f));
+  depth(cv::Rect(300, 0, 40, 480)).setTo(1.0f);
+  // On the box: colour columns 315-354 see it (u - 15 in 300-339).
+  const auto box = FindIrPixel(c, depth, {330, 200});
+  REQUIRE(box);
+  CHECK(box->x() == Approx(315));
+  // The wall left of the box: colour column 200 sees the wall at IR column 195.
+  const auto wall = FindIrPixel(c, depth, {200, 200});
+  REQUIRE(wall);
+  CHECK(wall->x() == Approx(195));
+  // Colour column 348 sees the box (IR 333), though the wall point on its ray (IR 343) is also
+  // in view of the IR camera: the nearer surface hides it.
+  const auto front = FindIrPixel(c, depth, {348, 200});
+  REQUIRE(front);
+  CHECK(front->x() == Approx(333));
+  // Colour column 360 sees the wall at IR 355, just right of the box.
+  const auto behind = FindIrPixel(c, depth, {360, 200});
+  REQUIRE(behind);
+  CHECK(behind->x() == Approx(355));
+  // Lifted: the point on the colour ray at the box's depth.
+  const auto lifted = LiftColorPixel(c, depth, {330, 200});
+  REQUIRE(lifted);
+  CHECK(lifted->z() == Approx(1.0));
+  CHECK((IrToColor(c, ProjectIr(c, *lifted), lifted->z()) - Eigen::Vector2d(330, 200)).norm() <
+        1e-9);
+  // No depth at all: nothing.
+  CHECK_FALSE(FindIrPixel(c, cv::Mat::zeros(480, 640, CV_32FC1), {330, 200}));
+  // Without the term the depth image is not consulted: eq. 1.
+  c.s_u = 0;
+  CHECK(FindIrPixel(c, depth, {330, 200})->x() == 330);
+}

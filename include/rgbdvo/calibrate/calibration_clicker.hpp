@@ -89,6 +89,7 @@ class CalibrationClicker {
   std::optional<Pending> pending_;
   MappingFit fit_;
   cv::Mat vis_bgr_, depth_bgr_;  // images as shown (unscaled), depth colour-mapped
+  cv::Mat depth_m_;              // the frame's depth, metres (a pair's z_ir_m)
   int frame_index_ = -1;
   double timestamp_ = 0;
   cv::Point hover_{-1, -1};
@@ -101,5 +102,9 @@ class CalibrationClicker {
 // The depth image (CV_32FC1 metres, 0 = no reading) as a colour image: turbo colour map over
 // the 2nd..98th percentile of the valid depths, missing depth black.
 cv::Mat ColorizeDepth(const cv::Mat& depth_m);
+
+// The nearest depth (metres) among the 3x3 pixels around pt in a CV_32FC1 depth image, 0 when
+// none has a reading: a pair's z_ir_m (a clicked depth edge belongs to the nearer surface).
+double NearestDepth(const cv::Mat& depth_m, const cv::Point2d& pt);
 
 }  // namespace rgbdvo

@@ -2,10 +2,11 @@
 // The camera calibration of paper section 2.1: the linear colour->IR mapping (eq. 1), the IR
 // (depth) camera intrinsics K_ir (eq. 2) and the usable depth range. Stored as YAML (written by
 // cv::FileStorage, read by a reader of its own) with top-level keys A, B, C, D, K_ir (3x3
-// opencv-matrix), min_depth_m, max_depth_m and the optional dist_ir (1x5: k1 k2 p1 p2 k3),
-// depth_units_per_m and description. LoadCalibration also reads a ROS camera_info YAML file
-// (camera_matrix, distortion_model, distortion_coefficients: a camera calibrated with ROS's
-// camera_calibration), as the camera of registered depth: the identity mapping.
+// opencv-matrix), min_depth_m, max_depth_m and the optional s_u, s_v (the depth-aware term below),
+// dist_ir (1x5: k1 k2 p1 p2 k3), depth_units_per_m and description. LoadCalibration also reads a
+// ROS camera_info YAML file (camera_matrix, distortion_model, distortion_coefficients: a camera
+// calibrated with ROS's camera_calibration), as the camera of registered depth: the identity
+// mapping.
 
 #include <array>
 #include <string>
@@ -18,6 +19,13 @@ struct Calibration {
   double B = 0.0;
   double C = 1.0;
   double D = 0.0;
+  // The stereo disparity term eq. 1 leaves out (pixels * metres): the IR pixel that sees what
+  // colour pixel (u, v) sees at depth z is (A u + B + s_u / z, C v + D + s_v / z). For an IR
+  // camera at o = (o_x, o_y, 0) in the colour camera's frame, s_u = -f_ir,x o_x and
+  // s_v = -f_ir,y o_y (Kinect v1: about -585 * 0.025 = -14.6 px m). Both 0 (the default, and
+  // the paper): eq. 1, exact only at the depth where B and D were fitted.
+  double s_u = 0.0;
+  double s_v = 0.0;
   // K_ir: focal lengths and principal point of the depth image, pixels (paper eq. 3 values).
   double fx = 475.0;
   double fy = 475.0;
@@ -36,6 +44,7 @@ struct Calibration {
   // Free text kept with the file (where the numbers came from).
   std::string description;
 
+  bool HasDisparityTerm() const { return s_u != 0.0 || s_v != 0.0; }
   void Check() const;  // throws std::invalid_argument naming the field and the rule it broke
 };
 

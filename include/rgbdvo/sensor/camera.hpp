@@ -1,7 +1,9 @@
 #pragma once
-// Colour pixel -> IR pixel -> 3D point (paper section 2.1, eq. 1 and 4).
+// Colour pixel -> IR pixel -> 3D point (paper section 2.1, eq. 1 and 4), with the optional
+// depth-aware term of the calibration (Calibration::s_u, s_v).
 
 #include <Eigen/Core>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <optional>
 
@@ -9,11 +11,18 @@
 
 namespace rgbdvo {
 
-// Paper eq. 1: the IR (depth image) pixel that sees what colour pixel uv_vis sees.
-Eigen::Vector2d ColorToIr(const Calibration& calib, const Eigen::Vector2d& uv_vis);
+constexpr double kInfiniteDepth = std::numeric_limits<double>::infinity();
 
-// Inverse of eq. 1: the colour pixel u = (u_ir - B) / A, v = (v_ir - D) / C.
-Eigen::Vector2d IrToColor(const Calibration& calib, const Eigen::Vector2d& uv_ir);
+// Paper eq. 1 plus the disparity term: the IR (depth image) pixel that sees the point at depth
+// z_m (metres, Z in the IR camera) on the ray of colour pixel uv_vis:
+// (A u + B + s_u / z, C v + D + s_v / z). Without a disparity term z_m changes nothing.
+Eigen::Vector2d ColorToIr(const Calibration& calib, const Eigen::Vector2d& uv_vis,
+                          double z_m = kInfiniteDepth);
+
+// Its inverse: the colour pixel u = (u_ir - B - s_u / z) / A, v = (v_ir - D - s_v / z) / C
+// that sees the point at depth z_m seen at IR pixel uv_ir.
+Eigen::Vector2d IrToColor(const Calibration& calib, const Eigen::Vector2d& uv_ir,
+                          double z_m = kInfiniteDepth);
 
 // The undistorted normalised coordinates (x, y) = K_ir^-1 [u, v, 1] of IR pixel uv_ir, with
 // dist_ir removed (fixed-point inversion of OpenCV's model, as cv::undistortPoints does).
@@ -38,8 +47,23 @@ std::optional<double> SampleDepth(const Calibration& calib, const cv::Mat& depth
 std::optional<double> SampleDepthBilinear(const Calibration& calib, const cv::Mat& depth_m,
                                           const Eigen::Vector2d& uv_ir, double max_jump_ratio);
 
+// The point at depth z_m on the ray of colour pixel uv_vis, in the IR camera frame:
+// BackProject(ColorToIr(uv_vis, z_m), z_m).
+Eigen::Vector3d ColorRayPoint(const Calibration& calib, const Eigen::Vector2d& uv_vis, double z_m);
+
+// The IR pixel that sees what colour pixel uv_vis sees. Eq. 1 without a disparity term (the
+// depth image is not consulted). With one, the ray's IR pixels ColorToIr(uv_vis, z) form a
+// segment over the depth range (z >= 0.1 m); it is walked from near to far in half-pixel steps
+// and the first pixel whose depth z puts the ray's point within a pixel of it is the answer
+// (a surface nearer on the ray would hide a farther one from the colour camera). nullopt when
+// no pixel of the segment agrees: the point is hidden from the IR camera or has no depth.
+std::optional<Eigen::Vector2d> FindIrPixel(const Calibration& calib, const cv::Mat& depth_m,
+                                           const Eigen::Vector2d& uv_vis);
+
 // The whole chain: the 3D point (IR camera frame) seen at colour pixel uv_vis, or nullopt.
-// Nearest-pixel depth (the paper) unless max_jump_ratio > 0, then SampleDepthBilinear.
+// FindIrPixel, then the depth there: nearest-pixel (the paper) unless max_jump_ratio > 0, then
+// SampleDepthBilinear. With a disparity term the point is put on the colour pixel's ray at that
+// depth (ColorRayPoint).
 std::optional<Eigen::Vector3d> LiftColorPixel(const Calibration& calib, const cv::Mat& depth_m,
                                               const Eigen::Vector2d& uv_vis,
                                               double max_jump_ratio = 0);

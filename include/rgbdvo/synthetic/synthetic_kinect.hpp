@@ -35,8 +35,11 @@ struct SyntheticKinectOptions {
   void Check() const;
 };
 
-// The calibration matching the simulation: A..D as above, K_ir = the IR intrinsics.
-Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& options);
+// The calibration matching the simulation, K_ir = the IR intrinsics. Eq. 1 as above (exact at
+// the reference depth), or with depth_aware the mapping exact at every depth: A, C as above,
+// B = cx_ir - A cx_rgb, D = cy_ir - C cy_rgb, s_u = -fx_ir ox, s_v = -fy_ir oy.
+Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& options,
+                                       bool depth_aware = false);
 
 // MakeSmoothPath moved 2 m into the room, so the scene lies about 0.4-2.5 m away, the Kinect's
 // working range, where one raw depth step is under 2 cm. (From the default start the far wall
@@ -46,9 +49,9 @@ std::vector<Rigid3d> MakeKinectRangePath(int n);
 // Writes, into the new folder (refused if not empty, like every recording), one r-, a- and
 // d- entry per pose of `world_from_color` (colour at t_k, accelerometer at t_k + 0.3 ms, depth
 // at t_k + 1 ms, t_k = start + k * period), plus calib.yaml (the calibration above) and
-// groundtruth.txt (TUM format: depth timestamp and the IR camera's pose relative to its first
-// pose; the odometry measures the IR camera, whose frame its 3D points are in). Returns those
-// IR poses (ir0_from_irk).
+// calib_depth_aware.yaml (the exact depth-aware one) and groundtruth.txt (TUM format: depth
+// timestamp and the IR camera's pose relative to its first pose; the odometry measures the IR
+// camera, whose frame its 3D points are in). Returns those IR poses (ir0_from_irk).
 std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
                                                    const SyntheticScene& scene,
                                                    const SyntheticKinectOptions& options,
