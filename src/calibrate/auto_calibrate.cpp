@@ -148,14 +148,14 @@ double MappingDifference(const Problem& pr, const AutoCalibParams& a, const Auto
   return worst;
 }
 
-// How well the edge points pin the mapping down in its least constrained direction: the
-// smallest lambda of H x = lambda G x, where H is the Gauss-Newton matrix of the points within
+// How evenly the edge points pin the mapping down: the smallest over the largest lambda of
+// H x = lambda G x, where H is the Gauss-Newton matrix of the points within
 // tau (sum of g g^T, g = d(distance)/d(params)) and G = M^T M, M the derivative of where the IR
 // image's corners map (at the typical depth). For a mapping change moving the corners by 1 px
-// (RMS), the summed squared distance change is at least 4 lambda: about the number of edge
-// points that see that change. One outline direction alone leaves a direction near 0.
-double WeakestConstraint(const Problem& pr, const std::vector<int>& idx, const AutoCalibParams& p,
-                         double tau) {
+// (RMS), the summed squared distance change is 4 lambda: about the number of edge points that
+// see that change. Outlines in one direction only leave a change that few points see.
+double ConstraintRatio(const Problem& pr, const std::vector<int>& idx, const AutoCalibParams& p,
+                       double tau) {
   Eigen::Matrix<double, kAutoCalibParams, kAutoCalibParams> H, G;
   H.setZero();
   G.setZero();
@@ -171,7 +171,7 @@ double WeakestConstraint(const Problem& pr, const std::vector<int>& idx, const A
     G += J.transpose() * J;
   }
   Eigen::GeneralizedSelfAdjointEigenSolver<decltype(H)> solver(H, G, Eigen::EigenvaluesOnly);
-  return 4 * solver.eigenvalues().minCoeff();
+  return solver.eigenvalues().minCoeff() / std::max(solver.eigenvalues().maxCoeff(), 1e-12);
 }
 
 struct Refined {
@@ -324,6 +324,7 @@ void AutoCalibrateOptions::Check() const {
   need(max_iterations >= 1, "max_iterations", ">= 1");
   need(uncertainty_subsets >= 2, "uncertainty_subsets", ">= 2");
   need(max_corner_sigma_px > 0, "max_corner_sigma_px", "> 0");
+  need(min_constraint_ratio >= 0 && min_constraint_ratio < 1, "min_constraint_ratio", "in [0, 1)");
 }
 
 std::string AutoCalibration::Brief() const {
@@ -333,7 +334,8 @@ std::string AutoCalibration::Brief() const {
     << Fixed(sigma_B, 2) << " C=" << Fixed(C, 5) << "+-" << Fixed(sigma_C, 5)
     << " D=" << Fixed(D, 2) << "+-" << Fixed(sigma_D, 2) << " from " << frames_used << " of "
     << frames_given << " frames, " << edge_points << " depth-edge points, "
-    << Fixed(100 * inlier_fraction, 0) << " % inliers, RMS " << Fixed(rms_px, 2) << " px";
+    << Fixed(100 * inlier_fraction, 0) << " % inliers, RMS " << Fixed(rms_px, 2)
+    << " px, constraint ratio " << Fixed(constraint_ratio, 2);
   return s.str();
 }
 
@@ -454,7 +456,7 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
   }
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(pr.points.size());
   result.rms_px = inliers > 0 ? std::sqrt(sum_sq / inliers) : 0;
-  result.weakest_points = WeakestConstraint(pr, all, p, o.fine_truncation_px);
+  result.constraint_ratio = ConstraintRatio(pr, all, p, o.fine_truncation_px);
   result.picture_frame = used[std::max_element(inliers_per_frame.begin(), inliers_per_frame.end()) -
                               inliers_per_frame.begin()];
   Calibration fitted = start;
@@ -464,6 +466,14 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
     result.reason = "the depth edges do not agree with the colour edges: " +
                     Fixed(100 * result.inlier_fraction, 0) + " % inliers at the best fit, need " +
                     Fixed(100 * o.min_inlier_fraction, 0) + " %";
+    return result;
+  }
+
+  if (result.constraint_ratio < o.min_constraint_ratio) {
+    result.reason = "the edges do not pin the mapping down: its least constrained change is " +
+                    Fixed(1 / std::max(result.constraint_ratio, 1e-9), 0) +
+                    " times weaker than its best (need <= " + Fixed(1 / o.min_constraint_ratio, 0) +
+                    "); record objects whose outlines run in several directions across the image";
     return result;
   }
 

@@ -36,6 +36,7 @@ struct AutoCalibrateOptions {
   int max_iterations = 50;              // Levenberg-Marquardt iterations per truncation level
   int uncertainty_subsets = 4;          // disjoint blocks of frames refitted for the 1-sigma
   double max_corner_sigma_px = 2.0;     // larger 1-sigma of the mapped corners: success = false
+  double min_constraint_ratio = 0.08;   // weakest / strongest constraint below: success = false
   void Check() const;                   // throws std::invalid_argument naming the field
 };
 
@@ -56,9 +57,10 @@ struct AutoCalibration {
   int edge_points = 0;         // depth-edge points fitted (pooled, subsampled)
   double inlier_fraction = 0;  // of edge_points within inlier_px of a colour edge at the fit
   double rms_px = 0;           // RMS distance of the inliers to their colour edge, px
-  // Edge points' worth of constraint on the least constrained change of the mapping (one
-  // moving the image corners by 1 px RMS): near 0 when the outlines run in one direction only.
-  double weakest_points = 0;
+  // How evenly the edges constrain the mapping: the cost curvature of its least over its most
+  // constrained change, per px at the image corners (0.12-0.13 for the synthetic room, 0.04 for
+  // one block in view, whose outlines let the mapping slide along them).
+  double constraint_ratio = 0;
   int iterations = 0;         // Levenberg-Marquardt iterations, all levels
   int picture_frame = -1;     // index into the given frames of the frame with most inliers
   std::string Brief() const;  // one line: A-D +- sigma, frames, points, inliers, RMS (or why)
