@@ -557,7 +557,7 @@ cv::Mat AutoCalibrationPicture(const AutoCalibrateOptions& o, const Frame& frame
     for (int u = 0; u < depth.cols; ++u)
       if (const float z = depth.at<float>(v, u); InRange(z, calib))
         grey.at<uint8_t>(v, u) =
-            cv::saturate_cast<uint8_t>(40 + 160 * (hi - z) / std::max(hi - lo, 1e-6));
+            cv::saturate_cast<uint8_t>(30 + 100 * (hi - z) / std::max(hi - lo, 1e-6));
   cv::Mat picture;
   cv::cvtColor(grey, picture, cv::COLOR_GRAY2BGR);
 
@@ -576,7 +576,9 @@ cv::Mat AutoCalibrationPicture(const AutoCalibrateOptions& o, const Frame& frame
     }
   picture.setTo(cv::Scalar(255, 0, 255), color_edges);
   picture.setTo(cv::Scalar(0, 255, 0), depth_edges);
-  picture.setTo(cv::Scalar(255, 255, 255), depth_edges & color_edges);
+  cv::Mat near_color;  // within 1 px of a mapped colour edge
+  cv::dilate(color_edges, near_color, cv::Mat::ones(3, 3, CV_8UC1));
+  picture.setTo(cv::Scalar(255, 255, 255), depth_edges & near_color);
   return picture;
 }
 
@@ -586,6 +588,7 @@ std::vector<Frame> ReadSpreadFrames(FrameSource& source, int max_frames) {
   if (const std::optional<size_t> size = source.Size()) {
     const int n = static_cast<int>(*size), m = std::min(max_frames, n);
     std::vector<int> wanted;
+    wanted.reserve(m);
     for (int k = 0; k < m; ++k)
       wanted.push_back(m == 1 ? 0 : static_cast<int>(std::lround(k * (n - 1.0) / (m - 1))));
     size_t next = 0;

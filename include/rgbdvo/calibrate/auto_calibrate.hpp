@@ -93,7 +93,8 @@ Calibration ApplyAutoCalibration(const Calibration& base, const AutoCalibration&
 
 // The residual picture (CV_8UC3, the depth image's size): the depth image in grey (near =
 // bright), its depth edges in green and the frame's colour edges mapped by calib's eq. 1 in
-// magenta; where they coincide, white. Edges that line up mean a good fit.
+// magenta; depth edges within 1 px of a mapped colour edge in white. White outlines mean a good
+// fit; green ones beside magenta ones, an offset.
 cv::Mat AutoCalibrationPicture(const AutoCalibrateOptions& options, const Frame& frame,
                                const Calibration& calib);
 
