@@ -85,9 +85,10 @@ int Automatic(const CalibrateArgs& a) {
     const Frame& frame = frames[fit.picture_frame];
     if (!cv::imwrite(a.png, AutoCalibrationPicture(a.auto_options, frame, calib)))
       throw std::runtime_error(a.png + ": cannot write the picture");
-    std::cout << "wrote " << a.png << " (frame " << frame.index << " " << frame.name
-              << ": depth edges green, colour edges mapped by A-D magenta, both white)"
-              << std::endl;
+    std::cout
+        << "wrote " << a.png << " (frame " << frame.index << " " << frame.name
+        << ": depth edges green, colour edges mapped by A-D magenta, depth edges on them white)"
+        << std::endl;
   }
   return 0;
 }

@@ -13,7 +13,7 @@ using namespace rgbdvo::test;
 
 TEST_CASE("rgbdvo calibrate --auto fits a registered synthetic recording from a perturbed start") {
   // Registered depth (same camera): the truth is the identity. The start is 3 % off in A and C
-  // and 10 px in B and D. Measured: A = 1.0003, B = 0.1 px, C = 0.9998, D = 0.02 px.
+  // and 10 px in B and D. Measured: A = 0.99994, B = 0.10 px, C = 1.00016, D = -0.07 px (0.9 s).
   const std::string dir = MakeTempDir("autocal");
   const std::vector<Rigid3d> path = MakeSmoothPath(60);
   std::vector<Rigid3d> spread;
