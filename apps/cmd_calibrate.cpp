@@ -1,10 +1,13 @@
-// `rgbdvo calibrate`: fit A-D of paper eq. 1 from point pairs, from a file or clicked in a window.
+// `rgbdvo calibrate`: fit A-D of paper eq. 1 from point pairs, from a file or clicked in a window,
+// or from a recording's depth and colour edges (--auto).
 #include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <opencv2/highgui.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "commands.hpp"
+#include "rgbdvo/calibrate/auto_calibrate.hpp"
 #include "rgbdvo/calibrate/calibrate.hpp"
 #include "rgbdvo/calibrate/calibration_clicker.hpp"
 #include "rgbdvo/calibrate/pixel_pairs_file.hpp"
@@ -18,10 +21,12 @@ namespace {
 constexpr const char* kWindow = "rgbdvo calibrate";
 
 struct CalibrateArgs {
-  std::string source, pairs, out, calib, save_pairs;
+  std::string source, pairs, out, calib, save_pairs, png;
   int start = 0;
+  bool automatic = false, depth_scale_given = false;
   SourceOptions source_options;
   ClickerOptions clicker;
+  AutoCalibrateOptions auto_options;
 };
 
 // The calibration whose all but A-D is kept, and a line saying where K_ir comes from.
@@ -45,6 +50,46 @@ int FromFile(const CalibrateArgs& a) {
   std::cout << FitReport(fit, pairs);
   if (!fit.success) throw std::runtime_error(a.pairs + ": " + fit.reason);
   std::cout << WriteCalibrateOutputs(pairs, fit, base, a.out, a.save_pairs) << std::endl;
+  return 0;
+}
+
+// --auto: the start and all but A-D from --calib, else kinect_v1_default for a fakenect (raw
+// Kinect) recording and the paper's K_ir with the identity mapping otherwise (the grid search
+// spans both: calibrate_auto in docs/usage.md).
+int Automatic(const CalibrateArgs& a) {
+  Calibration base;
+  std::string base_name = a.calib;
+  if (base_name.empty() && IsFakenectFolder(a.source)) base_name = "kinect_v1_default";
+  if (base_name.empty()) {
+    std::cout << "# start: identity A-D, the paper's K_ir (give --calib for your camera's)"
+              << std::endl;
+  } else {
+    const std::string path = FindCalibration(base_name);
+    base = LoadCalibration(path);
+    std::cout << "# start and K_ir, distortion, depth range: " << path << std::endl;
+  }
+  SourceOptions options = a.source_options;
+  if (!a.depth_scale_given && base.depth_units_per_m > 0)
+    options.tum.depth_units_per_m = base.depth_units_per_m;
+  std::unique_ptr<FrameSource> source = OpenRecording(a.source, options);
+  std::cout << "# source: " << source->Describe() << std::endl;
+  const std::vector<Frame> frames = ReadSpreadFrames(*source, a.auto_options.max_frames);
+  if (frames.empty()) throw std::runtime_error(a.source + ": no frames");
+  const AutoCalibration fit = AutoCalibrate(a.auto_options, frames, base);
+  std::cout << fit.Brief() << std::endl;
+  if (!fit.success) throw std::runtime_error(a.source + ": " + fit.reason);
+  const Calibration calib = ApplyAutoCalibration(base, fit, a.source);
+  SaveCalibration(calib, a.out);
+  std::cout << "wrote " << a.out << std::endl;
+  if (!a.png.empty()) {
+    const Frame& frame = frames[fit.picture_frame];
+    if (!cv::imwrite(a.png, AutoCalibrationPicture(a.auto_options, frame, calib)))
+      throw std::runtime_error(a.png + ": cannot write the picture");
+    std::cout
+        << "wrote " << a.png << " (frame " << frame.index << " " << frame.name
+        << ": depth edges green, colour edges mapped by A-D magenta, depth edges on them white)"
+        << std::endl;
+  }
   return 0;
 }
 
@@ -113,8 +158,18 @@ void AddCalibrateCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "calibrate",
       "fit the colour->IR mapping A-D (paper eq. 1): click point pairs in a window over a "
-      "recorded SOURCE, or fit from --pairs FILE");
-  cmd->add_option("source", args->source, "recording folder to click pairs in (omit with --pairs)");
+      "recorded SOURCE, fit from --pairs FILE, or fit from SOURCE's depth and colour edges with "
+      "--auto");
+  cmd->add_option("source", args->source,
+                  "recording folder to click pairs in or to fit (--auto); omit with --pairs");
+  cmd->add_flag("--auto", args->automatic,
+                "fit A-D without clicks: depth edges of SOURCE against its colour edges");
+  cmd->add_option("--png", args->png,
+                  "auto: residual picture (depth, its edges and the mapped colour edges)");
+  cmd->add_option("--max-frames", args->auto_options.max_frames,
+                  "auto: frames used, spread over the recording")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--pairs", args->pairs,
                   "pairs CSV (u_vis,v_vis,u_ir,v_ir): fit from it, or with SOURCE start from it");
   cmd->add_option("--out", args->out, "calibration YAML to write")->required();
@@ -135,14 +190,22 @@ void AddCalibrateCommand(CLI::App& app) {
   cmd->add_option("--start", args->start, "window: first frame shown")->capture_default_str();
   cmd->add_option("--depth-scale", args->source_options.tum.depth_units_per_m,
                   "TUM depth units per metre")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([args](const std::string&) { args->depth_scale_given = true; });
   cmd->add_option("--max-dt", args->source_options.tum.max_time_diff_s,
                   "max rgb-depth time difference, s")
       ->capture_default_str();
   cmd->callback([args] {
     if (args->source.empty() && args->pairs.empty())
       throw CLI::ValidationError("calibrate", "give a SOURCE folder (window) or --pairs FILE");
-    const int code = args->source.empty() ? FromFile(*args) : Interactive(*args);
+    if (args->automatic && (args->source.empty() || !args->pairs.empty()))
+      throw CLI::ValidationError("calibrate", "--auto fits a SOURCE recording, without --pairs");
+    if (args->automatic)
+      args->auto_options.min_frames =
+          std::min(args->auto_options.min_frames, args->auto_options.max_frames);
+    const int code = args->automatic        ? Automatic(*args)
+                     : args->source.empty() ? FromFile(*args)
+                                            : Interactive(*args);
     if (code != 0) throw CLI::RuntimeError(code);
   });
 }
