@@ -100,6 +100,7 @@ struct Problem {
   std::vector<cv::Mat> distance;
   double typical_z = 2.0;  // median edge depth, m: where mappings are compared
   cv::Size ir_size;
+  Eigen::Vector2d disparity = Eigen::Vector2d::Zero();  // the start's s_u, s_v, px m (kept)
 };
 
 // Distance of point p, mapped by `params`, to its nearest colour edge; false when it maps
@@ -107,7 +108,8 @@ struct Problem {
 bool PointDistance(const Problem& pr, const EdgePoint& p, const AutoCalibParams& params, double* d,
                    AutoCalibParams* grad = nullptr) {
   Eigen::Matrix<double, 2, kAutoCalibParams> J;
-  const Eigen::Vector2d uv = IrToColorPixel(params, p.u_ir, p.v_ir, p.z_m, grad ? &J : nullptr);
+  const Eigen::Vector2d uv =
+      IrToColorPixel(params, pr.disparity, p.u_ir, p.v_ir, p.z_m, grad ? &J : nullptr);
   const cv::Mat& dist = pr.distance[p.frame];
   if (!Bilinear(dist, uv.x(), uv.y(), d)) return false;
   if (grad) {
@@ -142,8 +144,8 @@ double MappingDifference(const Problem& pr, const AutoCalibParams& a, const Auto
   for (const Eigen::Vector2d& c :
        {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0), Eigen::Vector2d(0, h), Eigen::Vector2d(w, h),
         Eigen::Vector2d(w / 2, h / 2)})
-    worst = std::max(worst, (IrToColorPixel(a, c.x(), c.y(), pr.typical_z) -
-                             IrToColorPixel(b, c.x(), c.y(), pr.typical_z))
+    worst = std::max(worst, (IrToColorPixel(a, pr.disparity, c.x(), c.y(), pr.typical_z) -
+                             IrToColorPixel(b, pr.disparity, c.x(), c.y(), pr.typical_z))
                                 .norm());
   return worst;
 }
@@ -167,7 +169,7 @@ double ConstraintRatio(const Problem& pr, const std::vector<int>& idx, const Aut
   Eigen::Matrix<double, 2, kAutoCalibParams> J;
   for (const Eigen::Vector2d& c : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0),
                                    Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)}) {
-    IrToColorPixel(p, c.x(), c.y(), pr.typical_z, &J);
+    IrToColorPixel(p, pr.disparity, c.x(), c.y(), pr.typical_z, &J);
     G += J.transpose() * J;
   }
   Eigen::GeneralizedSelfAdjointEigenSolver<decltype(H)> solver(H, G, Eigen::EigenvaluesOnly);
@@ -347,9 +349,11 @@ void ParamsToCalibration(const AutoCalibParams& p, Calibration* c) {
   c->A = p[0], c->B = p[1], c->C = p[2], c->D = p[3];
 }
 
-Eigen::Vector2d IrToColorPixel(const AutoCalibParams& p, double u_ir, double v_ir, double /*z_m*/,
+Eigen::Vector2d IrToColorPixel(const AutoCalibParams& p, const Eigen::Vector2d& disparity,
+                               double u_ir, double v_ir, double z_m,
                                Eigen::Matrix<double, 2, kAutoCalibParams>* jacobian) {
-  const double u = (u_ir - p[1]) / p[0], v = (v_ir - p[3]) / p[2];
+  const double u = (u_ir - p[1] - disparity.x() / z_m) / p[0];
+  const double v = (v_ir - p[3] - disparity.y() / z_m) / p[2];
   if (jacobian) {
     *jacobian << -u / p[0], -1 / p[0], 0, 0,  //
         0, 0, -v / p[2], -1 / p[2];
@@ -419,6 +423,7 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
     std::nth_element(z.begin(), z.begin() + z.size() / 2, z.end());
     pr.typical_z = z[z.size() / 2];
   }
+  pr.disparity = Eigen::Vector2d(start.s_u, start.s_v);
   for (int k : used) pr.distance.push_back(ColorDistance(o, frames[k].bgr, o.coarse_truncation_px));
 
   std::vector<int> all(pr.points.size());
@@ -498,7 +503,7 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
     for (const Eigen::Vector2d& c : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0),
                                      Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)}) {
       const auto at = [&](const AutoCalibParams& q) {
-        return IrToColorPixel(q, c.x(), c.y(), pr.typical_z);
+        return IrToColorPixel(q, pr.disparity, c.x(), c.y(), pr.typical_z);
       };
       Eigen::Vector2d m = Eigen::Vector2d::Zero();
       for (const AutoCalibParams& f : fits) m += at(f) / k;
@@ -569,7 +574,9 @@ cv::Mat AutoCalibrationPicture(const AutoCalibrateOptions& o, const Frame& frame
   for (int v = 0; v < edges.rows; ++v)
     for (int u = 0; u < edges.cols; ++u) {
       if (!edges.at<uint8_t>(v, u)) continue;
-      const Eigen::Vector2d ir = ColorToIr(calib, {u, v});
+      const std::optional<Eigen::Vector2d> found = FindIrPixel(calib, depth, {u, v});
+      if (!found) continue;
+      const Eigen::Vector2d& ir = *found;
       const int x = static_cast<int>(std::lround(ir.x())),
                 y = static_cast<int>(std::lround(ir.y()));
       if (x >= 0 && y >= 0 && x < depth.cols && y < depth.rows) color_edges.at<uint8_t>(y, x) = 255;

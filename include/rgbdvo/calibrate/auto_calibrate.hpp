@@ -66,21 +66,22 @@ struct AutoCalibration {
   std::string Brief() const;  // one line: A-D +- sigma, frames, points, inliers, RMS (or why)
 };
 
-// The fitted parameters: eq. 1's (A, B, C, D). A depth-dependent term (u_ir = A u + B + s/z)
-// would add entries here and in the three functions below, nothing else.
+// The fitted parameters: eq. 1's (A, B, C, D). The start calibration's disparity term (s_u,
+// s_v: the sensor's baseline, like K_ir) is kept and used, not fitted.
 constexpr int kAutoCalibParams = 4;
 using AutoCalibParams = Eigen::Matrix<double, kAutoCalibParams, 1>;
 AutoCalibParams ParamsFromCalibration(const Calibration& calib);
 void ParamsToCalibration(const AutoCalibParams& params, Calibration* calib);
-// The colour pixel that sees what IR pixel (u_ir, v_ir), depth z_m metres, sees: eq. 1
-// inverted, u = (u_ir - B) / A, v = (v_ir - D) / C (z_m unused by eq. 1). With `jacobian`,
-// also d(u, v) / d(params).
-Eigen::Vector2d IrToColorPixel(const AutoCalibParams& params, double u_ir, double v_ir, double z_m,
+// The colour pixel that sees what IR pixel (u_ir, v_ir), depth z_m metres, sees: the mapping
+// inverted, u = (u_ir - B - s_u / z) / A, v = (v_ir - D - s_v / z) / C, with
+// disparity = (s_u, s_v) (zero: eq. 1). With `jacobian`, also d(u, v) / d(params).
+Eigen::Vector2d IrToColorPixel(const AutoCalibParams& params, const Eigen::Vector2d& disparity,
+                               double u_ir, double v_ir, double z_m,
                                Eigen::Matrix<double, 2, kAutoCalibParams>* jacobian = nullptr);
 
 // Fits A-D to `frames` (colour CV_8UC3, depth CV_32FC1 metres in the IR image), starting from
-// start's A-D; start's depth range limits the depths used. Expected failures (no depth
-// readings, no depth edges, too few usable frames, no convergence, too few inliers) give
+// start's A-D; start's depth range limits the depths used, its s_u, s_v are kept. Expected failures
+// (no depth readings, no depth edges, too few usable frames, no convergence, too few inliers) give
 // success = false with the reason. Throws std::invalid_argument for an empty frame list or a
 // frame of the wrong image types.
 AutoCalibration AutoCalibrate(const AutoCalibrateOptions& options, const std::vector<Frame>& frames,
@@ -92,8 +93,8 @@ Calibration ApplyAutoCalibration(const Calibration& base, const AutoCalibration&
                                  const std::string& recording);
 
 // The residual picture (CV_8UC3, the depth image's size): the depth image in grey (near =
-// bright), its depth edges in green and the frame's colour edges mapped by calib's eq. 1 in
-// magenta; depth edges within 1 px of a mapped colour edge in white. White outlines mean a good
+// bright), its depth edges in green and the frame's colour edges mapped by calib (FindIrPixel)
+// in magenta; depth edges within 1 px of a mapped colour edge in white. White outlines mean a good
 // fit; green ones beside magenta ones, an offset.
 cv::Mat AutoCalibrationPicture(const AutoCalibrateOptions& options, const Frame& frame,
                                const Calibration& calib);
