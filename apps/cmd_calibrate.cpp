@@ -78,6 +78,7 @@ int Automatic(const CalibrateArgs& a) {
   const AutoCalibration fit = AutoCalibrate(a.auto_options, frames, base);
   std::cout << fit.Brief() << std::endl;
   if (!fit.success) throw std::runtime_error(a.source + ": " + fit.reason);
+  if (!fit.warning.empty()) std::cerr << "rgbdvo: warning: " << fit.warning << std::endl;
   const Calibration calib = ApplyAutoCalibration(base, fit, a.source);
   SaveCalibration(calib, a.out);
   std::cout << "wrote " << a.out << std::endl;

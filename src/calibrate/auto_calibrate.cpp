@@ -326,6 +326,7 @@ void AutoCalibrateOptions::Check() const {
   need(max_iterations >= 1, "max_iterations", ">= 1");
   need(uncertainty_subsets >= 2, "uncertainty_subsets", ">= 2");
   need(max_corner_sigma_px > 0, "max_corner_sigma_px", "> 0");
+  need(warn_corner_sigma_px > 0, "warn_corner_sigma_px", "> 0");
   need(min_constraint_ratio >= 0 && min_constraint_ratio < 1, "min_constraint_ratio", "in [0, 1)");
 }
 
@@ -523,6 +524,10 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
       return result;
     }
   }
+  if (result.corner_sigma_px > o.warn_corner_sigma_px)
+    result.warning = "the fit is uncertain by " + Fixed(result.corner_sigma_px, 1) +
+                     " px (1-sigma at the image corners, fits on parts of the recording); check "
+                     "the residual picture (--png), or record outlines in more directions";
   result.success = true;
   return result;
 }

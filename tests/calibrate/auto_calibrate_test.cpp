@@ -146,14 +146,14 @@ TEST_CASE("AutoCalibrate refuses a recording whose outlines run one way (one blo
   // The Kinect-range path (synth-kinect's) sees one block: a near-vertical and a slanted
   // outline, which leave the v mapping free to slide (C = 1.156 against the truth 1.105).
   // Measured constraint ratio 0.040 (8 frames) and 0.045 (16), against 0.12-0.13 for the room
-  // with 4, 8 or 16 frames; the check asks >= 0.08.
+  // with 4, 8 or 16 frames and 0.053-0.15 for real TUM excerpts; the check asks >= 0.05.
   const std::vector<Frame> frames = RenderFrames(8, MakeKinectRangePath(60));
   const AutoCalibration fit =
       AutoCalibrate({}, frames, SyntheticKinectCalibration(SyntheticKinectOptions()));
   INFO(fit.Brief());
   CHECK_FALSE(fit.success);
   CHECK_THAT(fit.reason, Catch::Contains("do not pin the mapping down"));
-  CHECK(fit.constraint_ratio < 0.08);
+  CHECK(fit.constraint_ratio < 0.05);
 }
 
 TEST_CASE("AutoCalibrate fails with a reason on all-zero depth, a flat wall and too few frames") {
