@@ -46,35 +46,36 @@ std::string RansacResult::Brief() const {
   return s.str();
 }
 
-RansacResult EstimateRigidRansac(const RansacOptions& o, const std::vector<PointPair>& pairs,
-                                 Rng& rng) {
+RansacResult EstimateRansac(const RansacOptions& o, const std::vector<PointPair>& pairs,
+                            const MotionModel& model, Rng& rng) {
   RansacResult result;
   const int n = static_cast<int>(pairs.size());
-  if (n < o.sample_size) {
-    result.reason = "pairs<" + std::to_string(o.sample_size);
+  const int sample_size = model.sample_size;
+  if (n < sample_size) {
+    result.reason = "pairs<" + std::to_string(sample_size);
     return result;
   }
-  std::vector<int> sample(o.sample_size);
+  std::vector<int> sample(sample_size);
   std::vector<int> best;
   int needed = o.max_trials;
   for (int trial = 0; trial < needed; ++trial) {
     ++result.trials;
     // Distinct random indices (partial Fisher-Yates on a small set by rejection).
-    for (int i = 0; i < o.sample_size; ++i) {
+    for (int i = 0; i < sample_size; ++i) {
       int k;
       do {
         k = std::uniform_int_distribution<int>(0, n - 1)(rng);
       } while (std::find(sample.begin(), sample.begin() + i, k) != sample.begin() + i);
       sample[i] = k;
     }
-    const std::optional<Rigid3d> hypothesis = AlignRigid(pairs, sample);
+    const std::optional<Rigid3d> hypothesis = model.fit(pairs, sample);
     if (!hypothesis) continue;
     std::vector<int> inliers = Inliers(pairs, *hypothesis, o.inlier_distance_m);
     if (inliers.size() > best.size()) {
       best = std::move(inliers);
       if (o.confidence > 0) {
         // Trials for P(some sample all inliers) >= confidence: log(1-p) / log(1-w^s).
-        const double all_in = std::pow(static_cast<double>(best.size()) / n, o.sample_size);
+        const double all_in = std::pow(static_cast<double>(best.size()) / n, sample_size);
         if (all_in >= 1.0) {
           needed = trial + 1;
         } else if (all_in > 0) {
@@ -84,20 +85,21 @@ RansacResult EstimateRigidRansac(const RansacOptions& o, const std::vector<Point
       }
     }
   }
-  if (best.size() < 3) {
+  const size_t min_pairs = static_cast<size_t>(model.min_pairs);
+  if (best.size() < min_pairs) {
     result.reason = "no_hypothesis";
     return result;
   }
   // Refinement (paper section 3): SVD on the inliers' centred points; then the inliers of the
   // refined motion, refined once more if that set changed.
-  std::optional<Rigid3d> refined = AlignRigid(pairs, best);
+  std::optional<Rigid3d> refined = model.fit(pairs, best);
   if (!refined) {
     result.reason = "degenerate_inliers";
     return result;
   }
   std::vector<int> inliers = Inliers(pairs, *refined, o.inlier_distance_m);
-  if (inliers.size() >= 3 && inliers != best) {
-    if (std::optional<Rigid3d> again = AlignRigid(pairs, inliers)) refined = again;
+  if (inliers.size() >= min_pairs && inliers != best) {
+    if (std::optional<Rigid3d> again = model.fit(pairs, inliers)) refined = again;
   } else {
     inliers = best;
   }
@@ -106,6 +108,15 @@ RansacResult EstimateRigidRansac(const RansacOptions& o, const std::vector<Point
   result.inliers = std::move(inliers);
   result.rms_m = Rms(pairs, result.inliers, *refined);
   return result;
+}
+
+RansacResult EstimateRigidRansac(const RansacOptions& o, const std::vector<PointPair>& pairs,
+                                 Rng& rng) {
+  const MotionModel rigid{o.sample_size, 3,
+                          [](const std::vector<PointPair>& p, const std::vector<int>& idx) {
+                            return AlignRigid(p, idx);
+                          }};
+  return EstimateRansac(o, pairs, rigid, rng);
 }
 
 }  // namespace rgbdvo

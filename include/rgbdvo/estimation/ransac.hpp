@@ -2,6 +2,8 @@
 // RANSAC over minimal rigid hypotheses from random 3D matches (paper section 3).
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -38,5 +40,19 @@ struct RansacResult {
 // recomputed once with the refined motion). success=false for too few pairs or no hypothesis.
 RansacResult EstimateRigidRansac(const RansacOptions& options, const std::vector<PointPair>& pairs,
                                  Rng& rng);
+
+// A motion model for RANSAC: prev_from_cur fitted (least squares) to the pairs named by the
+// indices, nullopt when they are degenerate; sample_size pairs per hypothesis, at least
+// min_pairs to refine on.
+struct MotionModel {
+  int sample_size = 4;
+  int min_pairs = 3;
+  std::function<std::optional<Rigid3d>(const std::vector<PointPair>&, const std::vector<int>&)> fit;
+};
+
+// EstimateRigidRansac with another model (options.sample_size is the rigid model's; the model
+// says its own): hypotheses from random samples, inliers by 3D distance, refined as above.
+RansacResult EstimateRansac(const RansacOptions& options, const std::vector<PointPair>& pairs,
+                            const MotionModel& model, Rng& rng);
 
 }  // namespace rgbdvo
