@@ -199,8 +199,9 @@ void PrintConfiguration(std::ostream& out, const std::string& source, const std:
                         const Calibration& calib, const OdometryOptions& options,
                         const RunOptions& run) {
   out << "# rgbdvo " RGBDVO_VERSION "\n# source: " << source << "\n# calibration: " << calib_path
-      << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D
-      << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
+      << " A=" << calib.A << " B=" << calib.B << " C=" << calib.C << " D=" << calib.D;
+  if (calib.HasDisparityTerm()) out << " s_u=" << calib.s_u << " s_v=" << calib.s_v;
+  out << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
       << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
       << "] m\n# threads: " << run.Describe() << "\n";
   std::istringstream config(options.ToString());
