@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rgbdvo/calibrate/calibrate.hpp"
 #include "rgbdvo/sensor/camera.hpp"
 
 namespace rgbdvo {
@@ -250,6 +251,9 @@ cv::Mat CalibrationClicker::Render() const {
   cv::line(canvas, cv::Point(cvRound(VisSize().width * s), 0),
            cv::Point(cvRound(VisSize().width * s), image_h - 1), cv::Scalar(255, 255, 255), 1);
 
+  // The fitted mapping (A-D and the disparity term) as a calibration, for the camera model.
+  std::optional<Calibration> mapping;
+  if (fit_.success) mapping = ApplyMappingFit(Calibration{}, fit_, "");
   for (size_t i = 0; i < pairs_.size(); ++i) {
     if (pairs_[i].frame != frame_index_ || frame_index_ < 0) continue;
     const PixelPair& p = pairs_[i].pair;
@@ -260,29 +264,25 @@ cv::Mat CalibrationClicker::Render() const {
     Marker(canvas, ToCanvas({p.u_vis, p.v_vis}, false), colour, label);
     const cv::Point2d ir = ToCanvas({p.u_ir, p.v_ir}, true);
     Marker(canvas, ir, colour, label);
-    if (fit_.success) {  // where the fit puts the twin, and the residual as a line
-      const double w = p.z_ir_m > 0 ? 1.0 / p.z_ir_m : 0.0;
-      const cv::Point2d pred = ToCanvas(
-          {fit_.A * p.u_vis + fit_.B + fit_.s_u * w, fit_.C * p.v_vis + fit_.D + fit_.s_v * w},
-          true);
+    if (mapping) {  // where the fit puts the twin, and the residual as a line
+      const Eigen::Vector2d at =
+          ColorToIr(*mapping, {p.u_vis, p.v_vis}, p.z_ir_m > 0 ? p.z_ir_m : kInfiniteDepth);
+      const cv::Point2d pred = ToCanvas({at.x(), at.y()}, true);
       cv::line(canvas, ir, pred, kPredicted, 1, cv::LINE_AA);
       Cross(canvas, pred, kPredicted);
     }
   }
   if (pending_) {
     Marker(canvas, ToCanvas(pending_->pt, pending_->ir), kPending, "?");
-    if (fit_.success) {
+    if (mapping) {
       // The twin through the fitted mapping, at the depth the depth image gives.
-      Calibration mapping;
-      mapping.A = fit_.A, mapping.B = fit_.B, mapping.C = fit_.C, mapping.D = fit_.D;
-      mapping.s_u = fit_.s_u, mapping.s_v = fit_.s_v;
       const Eigen::Vector2d q(pending_->pt.x, pending_->pt.y);
       std::optional<Eigen::Vector2d> twin;
       if (pending_->ir) {
         const double z = NearestDepth(depth_m_, pending_->pt);
-        twin = IrToColor(mapping, q, z > 0 ? z : kInfiniteDepth);
+        twin = IrToColor(*mapping, q, z > 0 ? z : kInfiniteDepth);
       } else {
-        twin = depth_m_.empty() ? ColorToIr(mapping, q) : FindIrPixel(mapping, depth_m_, q);
+        twin = depth_m_.empty() ? ColorToIr(*mapping, q) : FindIrPixel(*mapping, depth_m_, q);
       }
       if (twin) Cross(canvas, ToCanvas({twin->x(), twin->y()}, !pending_->ir), kPending);
     }

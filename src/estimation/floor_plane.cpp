@@ -20,12 +20,15 @@ double InlierDistance(const FloorFitOptions& o, double z) {
   return std::max(o.min_inlier_m, 3 * kDepthNoise * z * z);
 }
 
+bool OnPlane(const FloorFitOptions& o, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+             double h) {
+  return std::abs(n.dot(p) - h) < InlierDistance(o, p.z());
+}
+
 int CountInliers(const FloorFitOptions& o, const std::vector<Eigen::Vector3d>& points,
                  const Eigen::Vector3d& n, double h) {
-  int count = 0;
-  for (const Eigen::Vector3d& p : points)
-    if (std::abs(n.dot(p) - h) < InlierDistance(o, p.z())) ++count;
-  return count;
+  return static_cast<int>(std::count_if(
+      points.begin(), points.end(), [&](const Eigen::Vector3d& p) { return OnPlane(o, p, n, h); }));
 }
 
 }  // namespace
@@ -92,7 +95,7 @@ FloorFit FitFloor(const FloorFitOptions& o, const Calibration& calib, const cv::
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> on;
   for (const Eigen::Vector3d& p : points)
-    if (std::abs(best_n.dot(p) - best_h) < InlierDistance(o, p.z())) on.push_back(p);
+    if (OnPlane(o, p, best_n, best_h)) on.push_back(p);
   for (const Eigen::Vector3d& p : on) mean += p;
   mean /= static_cast<double>(on.size());
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();

@@ -89,8 +89,9 @@ std::optional<Eigen::Vector2d> FindIrPixel(const Calibration& c, const cv::Mat& 
   if (!c.HasDisparityTerm()) return at_infinity;
   // The ray's IR pixel at inverse depth w = 1/z is at_infinity + s w.
   const Eigen::Vector2d s(c.s_u, c.s_v);
+  const double s_norm = s.norm();
   const double w_near = 1.0 / std::max(c.min_depth_m, 0.1), w_far = 1.0 / c.max_depth_m;
-  const int steps = std::max(1, static_cast<int>(std::ceil(s.norm() * (w_near - w_far) / 0.5)));
+  const int steps = std::max(1, static_cast<int>(std::ceil(s_norm * (w_near - w_far) / 0.5)));
   Eigen::Vector2i last(-1, -1);
   for (int i = 0; i <= steps; ++i) {
     const double w = w_near - (w_near - w_far) * i / steps;
@@ -100,7 +101,7 @@ std::optional<Eigen::Vector2d> FindIrPixel(const Calibration& c, const cv::Mat& 
     if (pixel == last) continue;
     last = pixel;
     const std::optional<double> d = SampleDepth(c, depth_m, uv_ir);
-    if (d && s.norm() * std::abs(1.0 / *d - w) <= 1.0) return ColorToIr(c, uv_vis, *d);
+    if (d && s_norm * std::abs(1.0 / *d - w) <= 1.0) return ColorToIr(c, uv_vis, *d);
   }
   return std::nullopt;
 }
