@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "rgbdvo/estimation/planar_motion.hpp"
 #include "rgbdvo/sensor/camera.hpp"
 
 namespace rgbdvo {
@@ -105,8 +106,7 @@ FloorFit FitFloor(const FloorFitOptions& o, const Calibration& calib, const cv::
   fit.normal_in_cam = n;
   fit.height_m = n.dot(mean);
   fit.inliers = CountInliers(o, points, n, fit.height_m);
-  fit.level_from_cam =
-      Eigen::Quaterniond::FromTwoVectors(n, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  fit.level_from_cam = LevelFromFloorNormal(n);
   fit.pitch_deg = std::atan2(n.z(), n.y()) * 180 / M_PI;
   fit.roll_deg = std::asin(std::clamp(n.x(), -1.0, 1.0)) * 180 / M_PI;
   fit.success = true;

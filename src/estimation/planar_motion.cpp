@@ -15,6 +15,24 @@ Rigid3d PlanarMotion(const Eigen::Matrix3d& level_from_cam, double yaw_rad, doub
   return level.inverse() * in_level * level;
 }
 
+Eigen::Matrix3d LevelFromFloorNormal(const Eigen::Vector3d& normal_in_cam) {
+  return Eigen::Quaterniond::FromTwoVectors(normal_in_cam.normalized(), Eigen::Vector3d::UnitY())
+      .toRotationMatrix();
+}
+
+Eigen::Vector3d FloorNormalFromMount(double pitch_deg, double roll_deg) {
+  const double p = pitch_deg * M_PI / 180, r = roll_deg * M_PI / 180;
+  return {std::sin(r), std::cos(r) * std::cos(p), std::cos(r) * std::sin(p)};
+}
+
+Rigid3d ProjectPlanar(const Eigen::Matrix3d& level_from_cam, const Rigid3d& prev_from_cur) {
+  const Eigen::Matrix3d R = level_from_cam * prev_from_cur.linear() * level_from_cam.transpose();
+  const Eigen::Vector3d t = level_from_cam * prev_from_cur.translation();
+  // R_y(yaw) = [c 0 s; 0 1 0; -s 0 c]: the yaw maximising trace(R_y^T R).
+  const double yaw = std::atan2(R(0, 2) - R(2, 0), R(0, 0) + R(2, 2));
+  return PlanarMotion(level_from_cam, yaw, t.x(), t.z());
+}
+
 std::optional<Rigid3d> AlignPlanar(const Eigen::Matrix3d& level_from_cam,
                                    const std::vector<PointPair>& pairs,
                                    const std::vector<int>& indices) {

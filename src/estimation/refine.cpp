@@ -196,12 +196,29 @@ RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<Po
   Vec6 g;
   double cost = Evaluate(o, f, pairs, idx, dense, initial, &H, &g);
   result.initial_cost = cost;
+  // The planar model's left perturbations, in the camera frame: a turn about the level y axis
+  // and translations along the level x and z axes (delta = B * (yaw, x, z)).
+  std::optional<Eigen::Matrix<double, 6, 3>> basis;
+  if (o.planar_level_from_cam) {
+    const Eigen::Matrix3d cam_from_level = o.planar_level_from_cam->transpose();
+    basis.emplace(Eigen::Matrix<double, 6, 3>::Zero());
+    basis->block<3, 1>(0, 0) = cam_from_level.col(1);
+    basis->block<3, 1>(3, 1) = cam_from_level.col(0);
+    basis->block<3, 1>(3, 2) = cam_from_level.col(2);
+  }
   double lambda = 1e-4;
   for (int it = 0; it < o.max_iterations; ++it) {
     result.iterations = it + 1;
-    Mat6 A = H;
-    A.diagonal() *= 1 + lambda;
-    const Vec6 delta = -A.ldlt().solve(g);
+    Vec6 delta;
+    if (basis) {
+      Eigen::Matrix3d A = basis->transpose() * H * *basis;
+      A.diagonal() *= 1 + lambda;
+      delta = *basis * -A.ldlt().solve(basis->transpose() * g);
+    } else {
+      Mat6 A = H;
+      A.diagonal() *= 1 + lambda;
+      delta = -A.ldlt().solve(g);
+    }
     if (!delta.allFinite()) break;
     const Rigid3d candidate = Apply(delta, result.prev_from_cur);
     Mat6 H2;

@@ -89,3 +89,26 @@ TEST_CASE("On planar motion the 3-DOF estimate is more accurate than the 6-DOF o
   CHECK(rot3 < 0.5 * rot6);
   CHECK(tr3 < 0.7 * tr6);
 }
+
+TEST_CASE("ProjectPlanar keeps a planar motion and drops the tilt and climb of another") {
+  const Eigen::Matrix3d L = Tilted();
+  const Rigid3d planar = PlanarMotion(L, 0.3, -0.2, 0.5);
+  CHECK(RigidNear(ProjectPlanar(L, planar), planar, 1e-9, 1e-12));
+  // The same motion with a 2 degree tilt about the level x axis and a 3 cm climb: projected
+  // back onto it (the yaw's projection is exact for a tilt about a horizontal axis only to
+  // second order: within 0.05 degrees and 1 mm).
+  Rigid3d tilt = Rigid3d::Identity();
+  tilt.linear() = L.transpose() * Eigen::AngleAxisd(0.035, Eigen::Vector3d::UnitX()) * L;
+  tilt.translation() = L.transpose() * Eigen::Vector3d(0, 0.03, 0);
+  CHECK(RigidNear(ProjectPlanar(L, tilt * planar), planar, 0.05, 0.001));
+}
+
+TEST_CASE("FloorNormalFromMount gives the normal whose angles FloorFit reports") {
+  for (const auto& [pitch, roll] : {std::pair{12.0, 1.0}, {-5.0, 20.0}, {0.0, 0.0}}) {
+    const Eigen::Vector3d n = FloorNormalFromMount(pitch, roll);
+    CHECK(n.norm() == Approx(1.0));
+    CHECK(std::atan2(n.z(), n.y()) * 180 / M_PI == Approx(pitch).margin(1e-9));
+    CHECK(std::asin(n.x()) * 180 / M_PI == Approx(roll).margin(1e-9));
+    CHECK((LevelFromFloorNormal(n) * n - Eigen::Vector3d::UnitY()).norm() < 1e-12);
+  }
+}

@@ -20,6 +20,9 @@ struct MotionEstimate {
   Rigid3d prev_from_cur = Rigid3d::Identity();  // the final motion
   std::vector<int> inliers;                     // the final inliers (indices into the pairs)
   std::string reason;                           // why RANSAC failed ("" on success)
+  // With a constrained model (planar): the refinement of the final inliers with all 6 degrees
+  // of freedom, started from the final motion, to check the constraint against.
+  std::optional<Rigid3d> unconstrained;
 
   // The estimate RANSAC alone gives (no refinement).
   static MotionEstimate FromRansac(RansacResult ransac);

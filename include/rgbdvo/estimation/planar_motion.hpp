@@ -20,6 +20,21 @@ namespace rgbdvo {
 // then the translation (x_m, 0, z_m) in the level frame): level_from_cam^T T level_from_cam.
 Rigid3d PlanarMotion(const Eigen::Matrix3d& level_from_cam, double yaw_rad, double x_m, double z_m);
 
+// The level frame of a camera whose floor has unit normal `normal_in_cam` (pointing down, away
+// from the camera): the smallest rotation taking it to +y. (Any turn about y gives the same
+// planar motions.)
+Eigen::Matrix3d LevelFromFloorNormal(const Eigen::Vector3d& normal_in_cam);
+
+// The floor's unit normal in the camera frame for a camera mounted with this pitch (positive:
+// looking down) and roll (positive: the normal leans to the camera's +x), degrees; the angles
+// FloorFit reports: normal = (sin roll, cos roll cos pitch, cos roll sin pitch).
+Eigen::Vector3d FloorNormalFromMount(double pitch_deg, double roll_deg);
+
+// The planar motion nearest to prev_from_cur: its turn about the level frame's y (the yaw of
+// its rotation's projection onto such turns) and its translation's x-z part in the level frame.
+// Used for estimates made with all 6 degrees of freedom (the depth images' ICP).
+Rigid3d ProjectPlanar(const Eigen::Matrix3d& level_from_cam, const Rigid3d& prev_from_cur);
+
 // The planar motion minimising sum |a_k - (R b_k + t)|^2 over the x-z coordinates in the level
 // frame (a = p_prev, b = p_cur; heights are not compared) of the pairs named by `indices` (all
 // when empty): the 2D Kabsch solution, yaw = atan2(sum a'_x b'_z - a'_z b'_x, sum a'.b') on the

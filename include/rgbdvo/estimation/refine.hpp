@@ -2,6 +2,8 @@
 // Refinement of a frame-to-frame motion by weighted, robust least squares on the image
 // reprojection and depth residuals of the inlier matches (beyond the paper, issue 6).
 
+#include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@ struct RefineOptions {
   double huber_sigmas = 2.0;            // Huber threshold on a whitened residual block
   double inlier_sigmas = 4.0;           // a pair is an inlier below this whitened error
   int max_iterations = 10;              // Levenberg-Marquardt iterations
+  // Set: the motion is planar in this level frame (planar_motion.hpp) and only its turn about
+  // the level y axis and its x-z translation are refined; the initial motion must be planar.
+  std::optional<Eigen::Matrix3d> planar_level_from_cam;
   void Check() const;
 };
 
