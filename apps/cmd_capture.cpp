@@ -95,6 +95,8 @@ int Capture(CaptureArgs& a) {
                 << std::endl;
       warned_at = dropped;
     }
+    if (r.status == FrameStatus::kFirst && !a.quiet)
+      info << "# motion model: " << odometry.MotionModelBrief() << std::endl;
     status.Update(r, ", " + std::to_string(dropped) + " dropped");
     DelayFrame(a.frame_delay_ms);
   };
@@ -103,6 +105,10 @@ int Capture(CaptureArgs& a) {
   status.Finish();
   const CaptureStats stats = source.stats();
   info << summary.Brief() << "; " << stats.Brief() << std::endl;
+  if (odometry_options.motion != "6dof")
+    info << "motion model: " << odometry.MotionModelBrief() << "; left the plane "
+         << summary.non_planar_episodes << " times (" << summary.non_planar_frames << " frames)"
+         << std::endl;
   if (stats.end == CaptureEnd::kDeviceLost) {
     std::cerr << "rgbdvo: error: " << stats.end_reason
               << "; the trajectory and recording so far are complete and usable" << std::endl;

@@ -74,12 +74,18 @@ int Run(const RunArgs& a) {
   const RunSummary summary = RunOdometry(
       stoppable, odometry, writer_ptrs,
       [&](const FrameResult& r) {
+        if (r.status == FrameStatus::kFirst && !a.quiet)
+          info << "# motion model: " << odometry.MotionModelBrief() << std::endl;
         status.Update(r);
         DelayFrame(a.frame_delay_ms);
       },
       a.run, PrintWarning(status.redrawn()));
   status.Finish();
   info << summary.Brief() << std::endl;
+  if (odometry_options.motion != "6dof")
+    info << "motion model: " << odometry.MotionModelBrief() << "; left the plane "
+         << summary.non_planar_episodes << " times (" << summary.non_planar_frames << " frames)"
+         << std::endl;
   if (const int signo = StopOnSignals::Signal(); signo != 0) {
     // Interrupted: what was computed is written; the exit code says the run is incomplete, as a
     // shell reports a command ended by that signal.

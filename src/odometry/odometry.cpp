@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
 #include "rgbdvo/estimation/depth_term.hpp"
+#include "rgbdvo/estimation/floor_plane.hpp"
+#include "rgbdvo/estimation/planar_motion.hpp"
 #include "rgbdvo/geometry/motion_prior.hpp"
 #include "rgbdvo/odometry/odometry_parameters.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
@@ -28,6 +31,15 @@ void OdometryOptions::Check() const {
     throw std::invalid_argument("OdometryOptions.max_rejected_run must be >= 0");
   if (depth_term_step < 0)
     throw std::invalid_argument("OdometryOptions.depth_term_step must be >= 0");
+  if (motion != "6dof" && motion != "planar")
+    throw std::invalid_argument("OdometryOptions.motion must be 6dof or planar, not '" + motion +
+                                "'");
+  if (floor != "depth" && floor != "given")
+    throw std::invalid_argument("OdometryOptions.floor must be depth or given, not '" + floor +
+                                "'");
+  if (!(std::abs(mount_pitch_deg) < 90 && std::abs(mount_roll_deg) < 90))
+    throw std::invalid_argument(
+        "OdometryOptions.mount_pitch_deg and mount_roll_deg must be within (-90, 90)");
 }
 
 OdometryOptions PresetOptions(const std::string& name) {
@@ -119,8 +131,9 @@ MotionEstimate Odometry::EstimateFromMatches(const Reference& ref, const Referen
   r->pairs = static_cast<int>(pairs.size());
 
   t0.Restart();
-  MotionEstimate estimate =
-      MotionEstimate::FromRansac(EstimateRigidRansac(options_.ransac, pairs, rng_));
+  MotionEstimate estimate = MotionEstimate::FromRansac(
+      level_from_cam_ ? EstimatePlanarRansac(options_.ransac, *level_from_cam_, pairs, rng_)
+                      : EstimateRigidRansac(options_.ransac, pairs, rng_));
   if (estimate.success && options_.refine_enabled) {
     // Refine on the RANSAC inliers, measure the frame's noise scale there, re-select inliers by
     // whitened error at that scale, refine again at that scale.
@@ -145,6 +158,13 @@ MotionEstimate Odometry::EstimateFromMatches(const Reference& ref, const Referen
       }
       estimate.refine = RefineMotion(scaled, f, pairs, inliers, T, dense ? &*dense : nullptr);
       estimate.prev_from_cur = estimate.refine->prev_from_cur;
+      if (scaled.planar_level_from_cam) {
+        RefineOptions free = scaled;
+        free.planar_level_from_cam.reset();
+        estimate.unconstrained =
+            RefineMotion(free, f, pairs, inliers, estimate.prev_from_cur, dense ? &*dense : nullptr)
+                .prev_from_cur;
+      }
       estimate.inliers = std::move(inliers);
     }
   }
@@ -246,6 +266,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   r.times.lifting += t0.Seconds();
 
   if (!started_) {
+    SetUpMotionModel(frame);
     started_ = true;
     key_ = last_ = cur;
     has_before_ = false;
@@ -270,6 +291,10 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   if (r.reason.empty()) {
     // world_from_cur = world_from_key * key_from_cur.
     cur.world_from_cam = key_.world_from_cam * motion.prev_from_cur;
+    if (motion.unconstrained) {
+      cur.world_from_cam_6dof = key_.world_from_cam_6dof * *motion.unconstrained;
+      r.world_from_cam_6dof = cur.world_from_cam_6dof;
+    }
     if (key_.first_inliers < 0) key_.first_inliers = r.inliers;
     const bool new_keyframe = !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
                                 options_.keyframe_inlier_ratio > 0);
@@ -287,7 +312,13 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     if (aligned.success) {
       // The frame becomes the last estimated one; the keyframe stays (its sharp features are
       // what the next frame is matched against first).
-      cur.world_from_cam = last_.world_from_cam * aligned.prev_from_cur;
+      cur.world_from_cam = last_.world_from_cam *
+                           (level_from_cam_ ? ProjectPlanar(*level_from_cam_, aligned.prev_from_cur)
+                                            : aligned.prev_from_cur);
+      if (level_from_cam_) {
+        cur.world_from_cam_6dof = last_.world_from_cam_6dof * aligned.prev_from_cur;
+        r.world_from_cam_6dof = cur.world_from_cam_6dof;
+      }
       Advance(std::move(cur), false);
       r.status = FrameStatus::kDepth;
       r.world_from_cam = last_.world_from_cam;
@@ -309,7 +340,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run &&
       can_restart()) {
     // The references are out of reach: restart from this frame at the pose just reported.
-    cur.world_from_cam = r.world_from_cam;
+    cur.world_from_cam = cur.world_from_cam_6dof = r.world_from_cam;
     key_ = last_ = std::move(cur);
     has_before_ = false;
     rejected_run_ = 0;
@@ -320,6 +351,33 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   return r;
 }
 
+void Odometry::SetUpMotionModel(const Frame& first) {
+  if (options_.motion != "planar") {
+    motion_brief_ = "6-DOF";
+    return;
+  }
+  std::ostringstream brief;
+  brief << std::fixed << std::setprecision(1) << "planar (x, z and yaw about the floor's normal)";
+  if (options_.floor == "given") {
+    level_from_cam_ = LevelFromFloorNormal(
+        FloorNormalFromMount(options_.mount_pitch_deg, options_.mount_roll_deg));
+    brief << ", mount given: pitch " << options_.mount_pitch_deg << " deg, roll "
+          << options_.mount_roll_deg << " deg";
+  } else {
+    Rng rng(options_.seed);
+    const FloorFit fit = FitFloor(FloorFitOptions{}, calib_, first.depth_m, rng);
+    if (!fit.success)
+      throw std::runtime_error("--motion planar: no floor in the first frame's depth image (" +
+                               fit.reason +
+                               "); start with the floor in view or give the camera's mount "
+                               "with --floor given --mount-pitch DEG --mount-roll DEG");
+    level_from_cam_ = fit.level_from_cam;
+    brief << ", floor fitted in frame " << first.index << "'s depth: " << fit.Brief();
+  }
+  options_.refine.planar_level_from_cam = level_from_cam_;
+  motion_brief_ = brief.str();
+}
+
 Velocity Odometry::LastVelocity() const {
   if (!has_before_) return {};
   return VelocityOf(world_from_before_.inverse() * last_.world_from_cam,
@@ -328,6 +386,7 @@ Velocity Odometry::LastVelocity() const {
 
 void Odometry::Advance(Reference cur, bool new_keyframe) {
   cur.world_from_cam.linear() = NearestRotation(cur.world_from_cam.linear());
+  cur.world_from_cam_6dof.linear() = NearestRotation(cur.world_from_cam_6dof.linear());
   world_from_before_ = last_.world_from_cam;
   before_color_time_ = last_.color_timestamp;
   has_before_ = true;

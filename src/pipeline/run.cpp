@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "rgbdvo/odometry/planarity_check.hpp"
 #include "rgbdvo/odometry/tracking_gaps.hpp"
 #include "rgbdvo/sensor/depth_check.hpp"
 #include "rgbdvo/util/stopwatch.hpp"
@@ -244,6 +245,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   const Stopwatch start;
   double inlier_sum = 0;
   TrackingGaps gaps;
+  std::optional<PlanarityCheck> planarity;  // with the planar motion model
   std::optional<FeatureWorkers> workers;
   if (summary.threads > 1)
     workers.emplace(source, odometry.extractor(), summary.threads, options.EffectiveQueueFrames());
@@ -287,6 +289,11 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     }
     if (std::optional<std::string> warning = gaps.Add(result); warning && on_warning)
       on_warning(*warning);
+    if (!planarity && odometry.level_from_cam())  // the floor's normal in the first camera
+      planarity.emplace(PlanarityCheckOptions{}, odometry.level_from_cam()->row(1).transpose());
+    if (planarity)
+      if (std::optional<std::string> warning = planarity->Add(result); warning && on_warning)
+        on_warning(*warning);
     if (result.status != FrameStatus::kFirst) inlier_sum += result.inliers;
     summary.stage_seconds.features += result.times.features;
     summary.stage_seconds.matching += result.times.matching;
@@ -301,6 +308,10 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   }
   if (std::optional<std::string> warning = gaps.Finish(); warning && on_warning)
     on_warning(*warning);
+  if (planarity) {
+    summary.non_planar_frames = planarity->off_plane_frames();
+    summary.non_planar_episodes = planarity->episodes();
+  }
   summary.longest_gap_frames = gaps.longest_frames();
   summary.longest_gap_seconds = gaps.longest_seconds();
   for (const TrajectoryWriter* w : writers)

@@ -333,3 +333,74 @@ TEST_CASE("A frame's velocity is the motion from the estimated frame before it, 
   const Velocity truth = VelocityOf(path[1].inverse() * path[2], 1 / 30.0);
   CHECK((r2.velocity.translation_per_s - truth.translation_per_s).norm() < 0.1);
 }
+
+namespace {
+
+// A robot's camera 0.5 m above the default room's floor (y = 1.5), pitched 20 degrees down and
+// rolled 2 degrees, driving forward 1 cm and turning 1 degree per frame: world_from_cam poses
+// relative to the first.
+std::vector<Rigid3d> RobotPath(int n, Rigid3d* world_from_first) {
+  Rigid3d mount = Rigid3d::Identity();
+  mount.linear() = (Eigen::AngleAxisd(2 * M_PI / 180, Eigen::Vector3d::UnitZ()) *
+                    Eigen::AngleAxisd(-20 * M_PI / 180, Eigen::Vector3d::UnitX()))
+                       .toRotationMatrix();
+  Rigid3d robot = Rigid3d::Identity();
+  robot.translation() = Eigen::Vector3d(-0.3, 1.0, -0.5);
+  std::vector<Rigid3d> path;
+  for (int i = 0; i < n; ++i) {
+    path.push_back(robot * mount);
+    Rigid3d step = Rigid3d::Identity();
+    step.linear() = Eigen::AngleAxisd(M_PI / 180, Eigen::Vector3d::UnitY()).matrix();
+    step.translation() = Eigen::Vector3d(0, 0, 0.01);
+    robot = robot * step;
+  }
+  *world_from_first = path.front();
+  for (Rigid3d& p : path) p = world_from_first->inverse() * p;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("Planar motion: the floor is found in the first frame and the path kept on it") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  Rigid3d world_from_first;
+  const std::vector<Rigid3d> path = RobotPath(25, &world_from_first);
+  OdometryOptions options;
+  options.motion = "planar";
+  Odometry odometry(options, CalibFor(cam));
+  const Eigen::Vector3d normal_in_first =
+      world_from_first.linear().transpose() * Eigen::Vector3d::UnitY();
+  FrameResult last;
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    Frame f = Render(scene, cam, world_from_first * path[i], i);
+    last = odometry.Process(f);
+    INFO("frame " << i << " " << last.StatusString() << "; " << odometry.MotionModelBrief());
+    REQUIRE(HasEstimate(last.status));
+    // Every pose keeps the first camera's height above the floor (to the fitted normal's error:
+    // 0.3 degrees over at most 0.25 m) and its tilt.
+    CHECK(std::abs(normal_in_first.dot(last.world_from_cam.translation())) < 0.002);
+    CHECK(RotationErrorDeg(last.world_from_cam, path[i]) < 0.5);
+    CHECK(TranslationError(last.world_from_cam, path[i]) < 0.01);
+  }
+  CHECK_THAT(odometry.MotionModelBrief(), Catch::Contains("floor fitted in frame 0"));
+  CHECK(RigidNear(last.world_from_cam, path.back(), 0.3, 0.005));
+}
+
+TEST_CASE("Planar motion without a floor in view needs the mount given") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  Rigid3d looking_up = Rigid3d::Identity();  // 25 degrees up: the floor out of view
+  looking_up.linear() = Eigen::AngleAxisd(25 * M_PI / 180, Eigen::Vector3d::UnitX()).matrix();
+  const Frame f = Render(scene, cam, looking_up, 0);
+  OdometryOptions options;
+  options.motion = "planar";
+  Odometry fitted(options, CalibFor(cam));
+  CHECK_THROWS_WITH(fitted.Process(f), Catch::Contains("no floor in the first frame"));
+  options.floor = "given";
+  Odometry given(options, CalibFor(cam));
+  CHECK(given.Process(f).status == FrameStatus::kFirst);
+  CHECK_THAT(given.MotionModelBrief(), Catch::Contains("mount given: pitch 0.0 deg, roll 0.0"));
+  options.motion = "3dof";
+  CHECK_THROWS_WITH(options.Check(), Catch::Contains("motion must be 6dof or planar"));
+}

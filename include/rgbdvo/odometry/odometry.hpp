@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,19 @@ struct OdometryOptions {
   // fr3/teddy (full rate and thinned) by 10-25 %, but raises fr1/desk's fast turn's rotational
   // RPE by a fifth, past the dense peers (docs/benchmarks.md). 0 = feature residuals only.
   int depth_term_step = 0;
+  // The motion model: "6dof" (any rigid motion, the paper) or "planar" (issue 16): the camera is
+  // rigidly mounted on a robot driving on a flat floor, so each frame's motion is a turn about
+  // the floor's normal and a translation along the floor. 3 degrees of freedom instead of 6:
+  // 2-pair RANSAC hypotheses (EstimatePlanarRansac), a refinement of those 3 parameters, the
+  // depth fallback's estimate projected onto them (ProjectPlanar).
+  std::string motion = "6dof";
+  // With "planar", where the floor's normal in the camera frame comes from: "depth" = a plane
+  // fitted to the first frame's depth image (FitFloor; the floor must be in view), "given" =
+  // mount_pitch_deg and mount_roll_deg.
+  std::string floor = "depth";
+  double mount_pitch_deg = 0;  // with floor "given": the camera's pitch, deg (+: looks down)
+  double mount_roll_deg = 0;   // with floor "given": its roll, deg (+: the floor's normal
+                               // leans to the camera's +x; FloorFit's convention)
   // Use the calibration's lens distortion (dist_ir) when lifting pixels (the paper: no).
   bool undistort = true;
   uint32_t seed = 42;  // RANSAC random generator seed (fixed: runs are reproducible)
@@ -105,6 +119,9 @@ struct FrameResult {
   // frame and before two frames were estimated.
   // Moves the pose to another time, e.g. the depth image's (MoveAtVelocity).
   Velocity velocity;
+  // With the planar motion model: the pose the same estimates would give with all 6 degrees of
+  // freedom, chained alongside (PlanarityCheck); unset for predicted frames and with 6-DOF.
+  std::optional<Rigid3d> world_from_cam_6dof;
   int features = 0;
   int matches = 0;
   int pairs = 0;  // matches with depth at both ends
@@ -138,6 +155,11 @@ class Odometry {
   const SiftExtractor& extractor() const { return extractor_; }
   const OdometryOptions& options() const { return options_; }
   const Calibration& calibration() const { return calib_; }
+  // The motion model as used, one line: "6-DOF", or with "planar" the floor's normal and how it
+  // was found (known once the first frame is processed).
+  std::string MotionModelBrief() const { return motion_brief_; }
+  // With the planar model, once the first frame is processed: its level frame (planar_motion.hpp).
+  const std::optional<Eigen::Matrix3d>& level_from_cam() const { return level_from_cam_; }
 
  private:
   struct Reference {
@@ -147,6 +169,7 @@ class Odometry {
     Rigid3d depth_from_cam = Rigid3d::Identity();  // the depth camera at the depth image's time
     std::vector<Eigen::Vector3d> depth_points;     // SampleDepthPoints, in this camera
     Rigid3d world_from_cam = Rigid3d::Identity();
+    Rigid3d world_from_cam_6dof = Rigid3d::Identity();  // planar model: the 6-DOF chain
     int frame = -1;
     double color_timestamp = 0;  // seconds (Frame::color_timestamp)
     int first_inliers = -1;      // inliers of the first frame matched against it
@@ -160,6 +183,10 @@ class Odometry {
                                      const std::vector<cv::DMatch>& matches, FrameResult* r,
                                      std::vector<int>* match_of_pair);
 
+  // With the planar model: the level frame from the first frame's depth or the given mount
+  // (throws std::runtime_error when the floor is not found).
+  void SetUpMotionModel(const Frame& first);
+
   // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy.
   void Advance(Reference cur, bool new_keyframe);
   // From the frame before last_ to last_, per second of colour time (zero without both).
@@ -169,8 +196,10 @@ class Odometry {
   Calibration calib_;
   SiftExtractor extractor_;
   Rng rng_;
-  std::unique_ptr<DepthAligner> depth_aligner_;  // with depth_fallback
-  cv::Mat depth_rays_;                           // DepthRays, with depth_term_step
+  std::unique_ptr<DepthAligner> depth_aligner_;    // with depth_fallback
+  cv::Mat depth_rays_;                             // DepthRays, with depth_term_step
+  std::optional<Eigen::Matrix3d> level_from_cam_;  // with the planar model
+  std::string motion_brief_;
   bool started_ = false;
   Reference key_;   // what frames are matched against
   Reference last_;  // the last accepted frame (fallback when the keyframe fails)

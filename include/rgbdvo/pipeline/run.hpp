@@ -58,6 +58,9 @@ struct RunSummary {
   int lost = 0;       // references given up
   int longest_gap_frames = 0;
   double longest_gap_seconds = 0;
+  // With the planar motion model: frames where the 6-DOF estimates left the plane beyond
+  // PlanarityCheck's bounds, and how many times that began.
+  int non_planar_frames = 0, non_planar_episodes = 0;
   double mean_inliers = 0;  // over frames after the first
   double seconds = 0;       // wall time, decoding and writing included
   int threads = 1;          // as run
