@@ -104,7 +104,7 @@ SyntheticKinectOptions RobotKinectOptions(uint32_t seed) {
 std::vector<Rigid3d> WriteRobotRecording(const std::string& folder, const RobotPathOptions& path,
                                          int n, uint32_t seed) {
   const SyntheticKinectOptions kinect = RobotKinectOptions(seed);
-  const std::vector<Rigid3d> ir_poses = WriteSyntheticKinectRecording(
+  std::vector<Rigid3d> ir_poses = WriteSyntheticKinectRecording(
       folder, SyntheticScene::RobotHall(seed), kinect, MakeRobotPath(path, n));
   const RobotFloorTruth t = RobotIrFloorTruth(path, kinect);
   std::ofstream out(fs::path(folder) / "robot.txt");
