@@ -29,13 +29,15 @@ void AddSynthKinectCommand(CLI::App& app) {
                             ->check(CLI::Range(1, 100000))
                             ->capture_default_str();
   cmd->add_option("--seed", args->seed, "scene seed")->capture_default_str();
-  cmd->add_flag("--robot", args->robot,
-                "a ground robot's laps of a 5 x 3.5 m rectangle in a hall, with depth noise and "
-                "the floor's truth in robot.txt (about 1.5 MB per frame)");
+  CLI::Option* robot = cmd->add_flag(
+      "--robot", args->robot,
+      "a ground robot's laps of a 5 x 3.5 m rectangle in a hall, with depth noise and "
+      "the floor's truth in robot.txt (about 1.5 MB per frame)");
   cmd->add_option("--start", args->start_m,
                   "with --robot: start this far along the lap, m (the feature-poor side begins "
                   "at 8 m)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(robot);
   cmd->callback([args, frames] {
     if (args->robot) {
       RobotPathOptions path;

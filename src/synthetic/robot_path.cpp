@@ -121,6 +121,7 @@ std::vector<Rigid3d> WriteRobotRecording(const std::string& folder, const RobotP
       << "turn_rate_deg_per_s: " << path.speed_mps / path.turn_radius_m / kDeg << "\n"
       << "lap_m: " << path.LapLength() << "\n"
       << "lap_frames: " << path.LapFrames() << "\n"
+      << "start_m: " << path.start_m << "\n"
       << "frames: " << n << "\n"
       << "seed: " << seed << "\n";
   if (!out.flush()) throw std::runtime_error(folder + "/robot.txt: cannot write");
