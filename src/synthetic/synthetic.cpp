@@ -36,6 +36,20 @@ cv::Mat MakeTexture(cv::RNG& rng) {
   return tex;
 }
 
+// Feature-poor: a grey with sparse, small, low-contrast marks (a few per square metre).
+cv::Mat MakePlainTexture(cv::RNG& rng) {
+  const int base = rng.uniform(110, 150);
+  cv::Mat tex(kTextureSize, kTextureSize, CV_8UC3, cv::Scalar(base, base + 4, base + 8));
+  for (int i = 0; i < 200; ++i) {
+    const cv::Point c(rng.uniform(0, kTextureSize), rng.uniform(0, kTextureSize));
+    const int shade = base + rng.uniform(-30, 31);
+    cv::circle(tex, c, rng.uniform(4, 16), cv::Scalar(shade, shade + 4, shade + 8), cv::FILLED,
+               cv::LINE_AA);
+  }
+  cv::GaussianBlur(tex, tex, cv::Size(0, 0), 1.0);
+  return tex;
+}
+
 cv::Vec3b SampleTexture(const cv::Mat& tex, double s, double t) {
   // Bilinear, wrapping (textures tile the plane).
   const double x = s * kTexelsPerMetre, y = t * kTexelsPerMetre;
@@ -66,6 +80,24 @@ SyntheticScene::SyntheticScene(uint32_t seed) {
   boxes_.push_back({{0.5, -0.6, 2.6}, {1.3, 0.3, 3.3}, false, 2});
   boxes_.push_back({{-0.3, 0.9, 1.4}, {0.4, 1.5, 2.0}, false, 3});
   for (int i = 0; i < 4; ++i) textures_.push_back(MakeTexture(rng));
+}
+
+SyntheticScene SyntheticScene::RobotHall(uint32_t seed) {
+  SyntheticScene s{Empty{}};
+  cv::RNG rng(seed);
+  // {lo, hi} in metres; the floor is y = 0, heights are negative y.
+  s.boxes_.push_back({{-4.5, -2.5, -3.5}, {4.5, 0.0, 3.5}, true, 0});     // the hall
+  s.boxes_.push_back({{-1.1, -0.7, -0.5}, {-0.5, 0.0, 0.3}, false, 1});   // inside, left side
+  s.boxes_.push_back({{2.3, -1.1, 2.7}, {3.0, 0.0, 3.5}, false, 2});      // by the far wall
+  s.boxes_.push_back({{-3.4, -0.5, -1.2}, {-2.6, 0.0, -0.4}, false, 3});  // outside, left
+  s.boxes_.push_back({{-1.2, -0.9, -2.0}, {-0.6, 0.0, -1.6}, false, 1});  // inside, near side
+  s.boxes_.push_back({{-4.5, -2.0, 1.0}, {-4.0, 0.0, 2.2}, false, 2});    // a cabinet
+  // The feature-poor stretch: a mat 2 mm thick and a panel 1 cm in front of the wall.
+  s.boxes_.push_back({{0.75, -0.002, -3.5}, {2.75, 0.0, 2.0}, false, 4});
+  s.boxes_.push_back({{0.0, -2.5, -3.5}, {3.6, 0.0, -3.49}, false, 4});
+  for (int i = 0; i < 4; ++i) s.textures_.push_back(MakeTexture(rng));
+  s.textures_.push_back(MakePlainTexture(rng));
+  return s;
 }
 
 bool SyntheticScene::Cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double* t_hit,

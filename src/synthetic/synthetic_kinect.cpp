@@ -2,6 +2,7 @@
 
 #include <libfreenect.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,9 @@
 namespace fs = std::filesystem;
 
 namespace rgbdvo {
+namespace {
+constexpr double kGravity = 9.80665;  // m/s^2
+}  // namespace
 
 void SyntheticKinectOptions::Check() const {
   if (ir_in_color.z() != 0.0)
@@ -81,6 +85,9 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
      << std::fixed;
   std::vector<Rigid3d> ir_poses;
   Rigid3d ir0_from_world = Rigid3d::Identity();
+  cv::RNG noise(o.noise_seed);
+  const size_t n = world_from_color.size();
+  const double dt = static_cast<double>(o.period_us) * 1e-6;
   for (size_t k = 0; k < world_from_color.size(); ++k) {
     const int64_t t = o.start_us + static_cast<int64_t>(k) * o.period_us;
     const uint32_t ts = static_cast<uint32_t>(500 + 2000000 * k);
@@ -91,8 +98,16 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
     recorder.AddColor(t, ts, rgb.ptr<uint8_t>(), rgb.cols, rgb.rows);
     if (o.accelerometer) {
       // Gravity is +y (down) in the world frame; 819 counts per g (libfreenect.h).
+      Eigen::Vector3d apparent_in_g(0, 1, 0);
+      if (o.camera_acceleration && n >= 3) {  // at the ends, the acceleration next to them
+        const size_t i = std::clamp<size_t>(k, 1, n - 2);
+        apparent_in_g -=
+            (world_from_color[i + 1].translation() - 2 * world_from_color[i].translation() +
+             world_from_color[i - 1].translation()) /
+            (dt * dt * kGravity);
+      }
       const Eigen::Vector3d g =
-          world_from_color[k].linear().transpose() * Eigen::Vector3d(0, FREENECT_COUNTS_PER_G, 0);
+          world_from_color[k].linear().transpose() * apparent_in_g * FREENECT_COUNTS_PER_G;
       freenect_raw_tilt_state state{};
       state.accelerometer_x = static_cast<int16_t>(std::lround(g.x()));
       state.accelerometer_y = static_cast<int16_t>(std::lround(g.y()));
@@ -100,7 +115,11 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
       state.tilt_status = TILT_STATUS_STOPPED;
       recorder.AddAccel(t + 300, ts, &state, sizeof(state));
     }
-    const cv::Mat raw = KinectRawFromDepth(scene.RenderDepth(o.ir, world_from_ir));
+    cv::Mat depth = scene.RenderDepth(o.ir, world_from_ir);
+    if (o.depth_noise)
+      for (auto it = depth.begin<float>(); it != depth.end<float>(); ++it)
+        if (*it > 0) *it += static_cast<float>(noise.gaussian(1.425e-3 * *it * *it));
+    const cv::Mat raw = KinectRawFromDepth(depth);
     recorder.AddDepth(t + 1000, ts + 1000, raw.ptr<uint16_t>(), raw.cols, raw.rows);
 
     const Rigid3d ir0_from_irk = ir0_from_world * world_from_ir;
