@@ -36,6 +36,7 @@ int CountInliers(const FloorFitOptions& o, const std::vector<Eigen::Vector3d>& p
 
 void FloorFitOptions::Check() const {
   if (pixel_step < 1) throw std::invalid_argument("FloorFitOptions.pixel_step must be >= 1");
+  if (refinements < 1) throw std::invalid_argument("FloorFitOptions.refinements must be >= 1");
   if (max_trials < 1) throw std::invalid_argument("FloorFitOptions.max_trials must be >= 1");
   if (!(max_tilt_deg > 0 && max_tilt_deg < 90))
     throw std::invalid_argument("FloorFitOptions.max_tilt_deg must be in (0, 90)");
@@ -92,20 +93,32 @@ FloorFit FitFloor(const FloorFitOptions& o, const Calibration& calib, const cv::
     fit.reason = why.str();
     return fit;
   }
-  // Least squares through the inliers: the centroid and the covariance's smallest direction.
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> on;
-  for (const Eigen::Vector3d& p : points)
-    if (OnPlane(o, p, best_n, best_h)) on.push_back(p);
-  for (const Eigen::Vector3d& p : on) mean += p;
-  mean /= static_cast<double>(on.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const Eigen::Vector3d& p : on) cov += (p - mean) * (p - mean).transpose();
-  Eigen::Vector3d n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
-  if (n.y() < 0) n = -n;
+  // Weighted least squares through the inliers, re-selected with each new plane. A reading's
+  // noise lies along its ray: sigma_z = c z^2 along p / z, of which the plane's normal sees
+  // sigma_z (n . p) / z = c h z; so weights 1 / z^2.
+  Eigen::Vector3d n = best_n;
+  double h = best_h;
+  for (int iteration = 0; iteration < o.refinements; ++iteration) {
+    double weight_sum = 0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : points)
+      if (OnPlane(o, p, n, h)) {
+        const double w = 1 / (p.z() * p.z());
+        weight_sum += w;
+        mean += w * p;
+      }
+    if (!(weight_sum > 0)) break;
+    mean /= weight_sum;
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3d& p : points)
+      if (OnPlane(o, p, n, h)) cov += (p - mean) * (p - mean).transpose() / (p.z() * p.z());
+    n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    if (n.y() < 0) n = -n;
+    h = n.dot(mean);
+  }
   fit.normal_in_cam = n;
-  fit.height_m = n.dot(mean);
-  fit.inliers = CountInliers(o, points, n, fit.height_m);
+  fit.height_m = h;
+  fit.inliers = CountInliers(o, points, n, h);
   fit.level_from_cam = LevelFromFloorNormal(n);
   fit.pitch_deg = std::atan2(n.z(), n.y()) * 180 / M_PI;
   fit.roll_deg = std::asin(std::clamp(n.x(), -1.0, 1.0)) * 180 / M_PI;

@@ -1,8 +1,8 @@
 #pragma once
 // The floor under a camera rigidly mounted on a ground robot, from one depth image: the
 // camera-to-floor extrinsic (height, roll, pitch) that the planar motion model needs
-// (planar_motion.hpp; issue 16). RANSAC over planes through 3 back-projected pixels, then a
-// least-squares plane through the inliers.
+// (planar_motion.hpp; issue 16). RANSAC over planes through 3 back-projected pixels, then
+// weighted least-squares planes through the inliers.
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -21,7 +21,9 @@ struct FloorFitOptions {
   // sigma = 1.425e-3 z^2 m (Khoshelham & Elberink 2012), and at least min_inlier_m.
   double min_inlier_m = 0.01;
   double min_fraction = 0.05;  // fewer of the back-projected points on the floor: no floor
-  void Check() const;          // throws std::invalid_argument naming the field
+  // Weighted least-squares fits after RANSAC, each re-selecting the inliers of the last.
+  int refinements = 5;
+  void Check() const;  // throws std::invalid_argument naming the field
 };
 
 struct FloorFit {
