@@ -1,5 +1,6 @@
 #include "rgbdvo/estimation/depth_alignment.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 #include <opencv2/core/eigen.hpp>
@@ -62,6 +63,8 @@ void DepthAlignOptions::Check() const {
     throw std::invalid_argument("DepthAlignOptions.max_rotation_deg must be in (0, 180]");
   if (!(min_agreement >= 0 && min_agreement <= 1))
     throw std::invalid_argument("DepthAlignOptions.min_agreement must be in [0, 1]");
+  if (!(min_constraint >= 0 && min_constraint < 1))
+    throw std::invalid_argument("DepthAlignOptions.min_constraint must be in [0, 1)");
   if (downsample < 1 || downsample > 8)
     throw std::invalid_argument("DepthAlignOptions.downsample must be in [1, 8]");
   if (!(agreement_sigmas > 0 && depth_noise_coeff >= 0 && agreement_floor_m >= 0))
@@ -93,6 +96,32 @@ double DepthAgreement(const DepthAlignOptions& o, const Calibration& calib,
       if (std::abs(reading - p.z()) <= tolerance) ++agreed;
     }
   return landed > 0 ? static_cast<double>(agreed) / landed : 0.0;
+}
+
+TranslationConstraint MeasureTranslationConstraint(const cv::Mat& normals, double min_constraint) {
+  TranslationConstraint c;
+  if (normals.type() != CV_32FC3) return c;
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  int n = 0;
+  for (int v = 0; v < normals.rows; v += 2)
+    for (int u = 0; u < normals.cols; u += 2) {
+      const cv::Vec3f& m = normals.at<cv::Vec3f>(v, u);
+      const Eigen::Vector3d normal(m[0], m[1], m[2]);
+      if (!normal.allFinite() || !(normal.squaredNorm() > 0.5)) continue;
+      scatter += normal * normal.transpose();
+      ++n;
+    }
+  if (n == 0) {
+    c.free_directions = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                         Eigen::Vector3d::UnitZ()};
+    return c;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter / n);
+  c.weakest = eigen.eigenvalues()(0);
+  for (int k = 0; k < 3; ++k)
+    if (eigen.eigenvalues()(k) < min_constraint)
+      c.free_directions.push_back(eigen.eigenvectors().col(k));
+  return c;
 }
 
 DepthAligner::DepthAligner(const DepthAlignOptions& options, const Calibration& calib)
@@ -154,6 +183,18 @@ DepthAlignResult DepthAligner::Align(const cv::Mat& prev_depth_m, const cv::Mat&
       result.agreement = agreement;
       result.prev_from_cur = T;
     }
+  }
+  // Along a direction no surface faces, ICP's translation is whatever its start and noise made
+  // it (on a floor with one wall, a slide of up to a metre along the wall): take the
+  // prediction's there.
+  result.constraint = MeasureTranslationConstraint(icp_prev->normals, options_.min_constraint);
+  if (!result.constraint.free_directions.empty()) {
+    Eigen::Vector3d t = result.prev_from_cur.translation();
+    for (const Eigen::Vector3d& d : result.constraint.free_directions)
+      t += d * d.dot(prev_from_cur_guess.translation() - t);
+    result.prev_from_cur.translation() = t;
+    result.agreement =
+        DepthAgreement(options_, calib_, prev_depth_m, cur_depth_m, result.prev_from_cur);
   }
   const double angle_deg = Eigen::AngleAxisd(result.prev_from_cur.linear()).angle() * 180 / M_PI;
   if (result.prev_from_cur.translation().norm() > options_.max_translation_m ||
