@@ -96,13 +96,18 @@ FloorFit FitFloor(const FloorFitOptions& o, const Calibration& calib, const cv::
   // Weighted least squares through the inliers, re-selected with each new plane. A reading's
   // noise lies along its ray: sigma_z = c z^2 along p / z, of which the plane's normal sees
   // sigma_z (n . p) / z = c h z; so weights 1 / z^2.
+  // The refits keep points within 3 of those sigmas (at least min_inlier_m): RANSAC's wider
+  // test would let the foot of a far wall in (10 cm at 5 m).
   Eigen::Vector3d n = best_n;
   double h = best_h;
+  const auto near_plane = [&](const Eigen::Vector3d& p) {
+    return std::abs(n.dot(p) - h) < std::max(o.min_inlier_m, 3 * kDepthNoise * h * p.z());
+  };
   for (int iteration = 0; iteration < o.refinements; ++iteration) {
     double weight_sum = 0;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& p : points)
-      if (OnPlane(o, p, n, h)) {
+      if (near_plane(p)) {
         const double w = 1 / (p.z() * p.z());
         weight_sum += w;
         mean += w * p;
@@ -111,7 +116,7 @@ FloorFit FitFloor(const FloorFitOptions& o, const Calibration& calib, const cv::
     mean /= weight_sum;
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     for (const Eigen::Vector3d& p : points)
-      if (OnPlane(o, p, n, h)) cov += (p - mean) * (p - mean).transpose() / (p.z() * p.z());
+      if (near_plane(p)) cov += (p - mean) * (p - mean).transpose() / (p.z() * p.z());
     n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
     if (n.y() < 0) n = -n;
     h = n.dot(mean);

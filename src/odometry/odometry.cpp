@@ -315,10 +315,11 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       cur.world_from_cam = last_.world_from_cam *
                            (level_from_cam_ ? ProjectPlanar(*level_from_cam_, aligned.prev_from_cur)
                                             : aligned.prev_from_cur);
-      if (level_from_cam_) {
-        cur.world_from_cam_6dof = last_.world_from_cam_6dof * aligned.prev_from_cur;
-        r.world_from_cam_6dof = cur.world_from_cam_6dof;
-      }
+      // The 6-DOF chain goes on with the planar step: the depth alignment measures too little
+      // to tell (along a free direction it has the prediction's translation).
+      if (level_from_cam_)
+        cur.world_from_cam_6dof =
+            last_.world_from_cam_6dof * last_.world_from_cam.inverse() * cur.world_from_cam;
       Advance(std::move(cur), false);
       r.status = FrameStatus::kDepth;
       r.world_from_cam = last_.world_from_cam;

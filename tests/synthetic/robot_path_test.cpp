@@ -120,9 +120,10 @@ TEST_CASE("The robot's IR camera sees the floor where robot.txt says") {
       FitFloor({}, LoadCalibration(Recording() + "/calib_depth_aware.yaml"), first->depth_m, rng);
   INFO(fit.Brief());
   REQUIRE(fit.success);
-  CHECK(fit.height_m == Approx(truth.at("ir_height_m")).margin(0.02));
-  CHECK(fit.pitch_deg == Approx(truth.at("ir_pitch_deg")).margin(1.0));
-  CHECK(fit.roll_deg == Approx(truth.at("ir_roll_deg")).margin(1.0));
+  // Measured: 0.5997 m, 12.01 and 0.97 degrees (truth 0.5996, 12.00, 0.98).
+  CHECK(fit.height_m == Approx(truth.at("ir_height_m")).margin(0.003));
+  CHECK(fit.pitch_deg == Approx(truth.at("ir_pitch_deg")).margin(0.1));
+  CHECK(fit.roll_deg == Approx(truth.at("ir_roll_deg")).margin(0.1));
 }
 
 TEST_CASE("The robot recording's depth has the Kinect's noise, sigma = 1.425e-3 Z^2") {

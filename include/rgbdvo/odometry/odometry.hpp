@@ -120,7 +120,8 @@ struct FrameResult {
   // Moves the pose to another time, e.g. the depth image's (MoveAtVelocity).
   Velocity velocity;
   // With the planar motion model: the pose the same estimates would give with all 6 degrees of
-  // freedom, chained alongside (PlanarityCheck); unset for predicted frames and with 6-DOF.
+  // freedom, chained alongside (PlanarityCheck); set for feature estimates only (the chain
+  // takes the planar step across depth-aligned frames).
   std::optional<Rigid3d> world_from_cam_6dof;
   int features = 0;
   int matches = 0;
