@@ -105,10 +105,8 @@ int Capture(CaptureArgs& a) {
   status.Finish();
   const CaptureStats stats = source.stats();
   info << summary.Brief() << "; " << stats.Brief() << std::endl;
-  if (odometry_options.motion != "6dof")
-    info << "motion model: " << odometry.MotionModelBrief() << "; left the plane "
-         << summary.non_planar_episodes << " times (" << summary.non_planar_frames << " frames)"
-         << std::endl;
+  if (const std::string model = MotionModelSummary(odometry, summary); !model.empty())
+    info << model << std::endl;
   if (stats.end == CaptureEnd::kDeviceLost) {
     std::cerr << "rgbdvo: error: " << stats.end_reason
               << "; the trajectory and recording so far are complete and usable" << std::endl;

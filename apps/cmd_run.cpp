@@ -82,10 +82,8 @@ int Run(const RunArgs& a) {
       a.run, PrintWarning(status.redrawn()));
   status.Finish();
   info << summary.Brief() << std::endl;
-  if (odometry_options.motion != "6dof")
-    info << "motion model: " << odometry.MotionModelBrief() << "; left the plane "
-         << summary.non_planar_episodes << " times (" << summary.non_planar_frames << " frames)"
-         << std::endl;
+  if (const std::string model = MotionModelSummary(odometry, summary); !model.empty())
+    info << model << std::endl;
   if (const int signo = StopOnSignals::Signal(); signo != 0) {
     // Interrupted: what was computed is written; the exit code says the run is incomplete, as a
     // shell reports a command ended by that signal.

@@ -189,6 +189,13 @@ void StatusLine::Finish() {
   if (terminal_ && printed_) std::cerr << "\n";
 }
 
+std::string MotionModelSummary(const Odometry& odometry, const RunSummary& summary) {
+  if (!odometry.level_from_cam()) return "";
+  return "motion model: " + odometry.MotionModelBrief() + "; left the plane " +
+         std::to_string(summary.non_planar_episodes) + " times (" +
+         std::to_string(summary.non_planar_frames) + " frames)";
+}
+
 std::function<void(const std::string&)> PrintWarning(bool progress) {
   return [progress](const std::string& warning) {
     std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: " << warning << std::endl;

@@ -96,6 +96,10 @@ class StatusLine {
 // (`progress`) is being redrawn there.
 std::function<void(const std::string&)> PrintWarning(bool progress);
 
+// With the planar motion model, after the run: "motion model: <the model and its floor>; left
+// the plane N times (M frames)"; empty with 6-DOF.
+std::string MotionModelSummary(const Odometry& odometry, const RunSummary& summary);
+
 // The effective configuration as `# ` lines, so a run can be reproduced.
 void PrintConfiguration(std::ostream& out, const std::string& source, const std::string& calib_path,
                         const Calibration& calib, const OdometryOptions& options,

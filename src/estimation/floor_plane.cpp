@@ -11,14 +11,13 @@
 
 #include "rgbdvo/estimation/planar_motion.hpp"
 #include "rgbdvo/sensor/camera.hpp"
+#include "rgbdvo/sensor/kinect_depth.hpp"
 
 namespace rgbdvo {
 namespace {
 
-constexpr double kDepthNoise = 1.425e-3;  // sigma = kDepthNoise z^2, metres
-
 double InlierDistance(const FloorFitOptions& o, double z) {
-  return std::max(o.min_inlier_m, 3 * kDepthNoise * z * z);
+  return std::max(o.min_inlier_m, 3 * kKinectDepthNoiseCoeff * z * z);
 }
 
 bool OnPlane(const FloorFitOptions& o, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
@@ -101,7 +100,8 @@ FloorFit FitFloor(const FloorFitOptions& o, const Calibration& calib, const cv::
   Eigen::Vector3d n = best_n;
   double h = best_h;
   const auto near_plane = [&](const Eigen::Vector3d& p) {
-    return std::abs(n.dot(p) - h) < std::max(o.min_inlier_m, 3 * kDepthNoise * h * p.z());
+    return std::abs(n.dot(p) - h) <
+           std::max(o.min_inlier_m, 3 * kKinectDepthNoiseCoeff * h * p.z());
   };
   for (int iteration = 0; iteration < o.refinements; ++iteration) {
     double weight_sum = 0;

@@ -118,7 +118,7 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
     cv::Mat depth = scene.RenderDepth(o.ir, world_from_ir);
     if (o.depth_noise)
       for (auto it = depth.begin<float>(); it != depth.end<float>(); ++it)
-        if (*it > 0) *it += static_cast<float>(noise.gaussian(1.425e-3 * *it * *it));
+        if (*it > 0) *it += static_cast<float>(noise.gaussian(kKinectDepthNoiseCoeff * *it * *it));
     const cv::Mat raw = KinectRawFromDepth(depth);
     recorder.AddDepth(t + 1000, ts + 1000, raw.ptr<uint16_t>(), raw.cols, raw.rows);
 

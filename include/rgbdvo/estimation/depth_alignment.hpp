@@ -18,6 +18,7 @@
 
 #include "rgbdvo/geometry/geometry.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/sensor/kinect_depth.hpp"
 
 namespace rgbdvo {
 
@@ -36,7 +37,7 @@ struct DepthAlignOptions {
   // = depth_noise_coeff * z^2 (Khoshelham & Elberink 2012; as the refinement), plus
   // agreement_floor_m for the ICP's own residual misalignment at edges.
   double agreement_sigmas = 3.0;
-  double depth_noise_coeff = 0.001425;  // 1/m
+  double depth_noise_coeff = kKinectDepthNoiseCoeff;  // 1/m
   double agreement_floor_m = 0.005;
   // A translation direction is free when the mean squared component of the surface normals
   // along it is below this (TranslationConstraint): there ICP's result is replaced by the

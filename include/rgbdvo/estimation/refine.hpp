@@ -10,16 +10,17 @@
 #include "rgbdvo/estimation/depth_term.hpp"
 #include "rgbdvo/estimation/point_pair.hpp"
 #include "rgbdvo/geometry/geometry.hpp"
+#include "rgbdvo/sensor/kinect_depth.hpp"
 
 namespace rgbdvo {
 
 struct RefineOptions {
-  double pixel_sigma = 1.0;             // keypoint localisation noise, pixels
-  double depth_noise_coeff = 1.425e-3;  // Kinect depth noise sigma_z = c * z^2, 1/m
-                                        // (Khoshelham & Elberink 2012)
-  double huber_sigmas = 2.0;            // Huber threshold on a whitened residual block
-  double inlier_sigmas = 4.0;           // a pair is an inlier below this whitened error
-  int max_iterations = 10;              // Levenberg-Marquardt iterations
+  double pixel_sigma = 1.0;                           // keypoint localisation noise, pixels
+  double depth_noise_coeff = kKinectDepthNoiseCoeff;  // Kinect depth noise sigma_z = c * z^2, 1/m
+                                                      // (Khoshelham & Elberink 2012)
+  double huber_sigmas = 2.0;   // Huber threshold on a whitened residual block
+  double inlier_sigmas = 4.0;  // a pair is an inlier below this whitened error
+  int max_iterations = 10;     // Levenberg-Marquardt iterations
   // Set: the motion is planar in this level frame (planar_motion.hpp) and only its turn about
   // the level y axis and its x-z translation are refined; the initial motion must be planar.
   std::optional<Eigen::Matrix3d> planar_level_from_cam;

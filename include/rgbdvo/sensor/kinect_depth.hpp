@@ -18,6 +18,11 @@ namespace rgbdvo {
 
 constexpr uint16_t kKinectNoReading = 2047;
 
+// The Kinect v1's depth noise grows with the square of the depth: sigma_z = c z^2, with
+// c = 1.425e-3 1/m (Khoshelham & Elberink 2012). The refinement, the depth fallback, the floor
+// fit and the synthetic Kinect all use it.
+constexpr double kKinectDepthNoiseCoeff = 1.425e-3;  // 1/m
+
 // Z-depth in metres of one raw disparity value, 0 for no reading.
 double MetresFromKinectRaw(uint16_t raw);
 
