@@ -60,6 +60,7 @@ int Capture(CaptureArgs& a) {
   const Calibration calib = LoadCalibration(calib_path);
   a.kinect.drop_when_behind = !a.no_drop;
   a.kinect.record_accel = !a.no_accel;
+  a.kinect.read_accel = odometry_options.NeedsAccelerometer();
   a.kinect.stop = &StopOnSignals::Flag();
   a.kinect.pairing = ParsePairing(a.pairing);
   a.kinect.Check();
@@ -107,6 +108,8 @@ int Capture(CaptureArgs& a) {
   info << summary.Brief() << "; " << stats.Brief() << std::endl;
   if (const std::string model = MotionModelSummary(odometry, summary); !model.empty())
     info << model << std::endl;
+  if (const std::string gravity = odometry.GravityBrief(); !gravity.empty())
+    info << gravity << std::endl;
   if (stats.end == CaptureEnd::kDeviceLost) {
     std::cerr << "rgbdvo: error: " << stats.end_reason
               << "; the trajectory and recording so far are complete and usable" << std::endl;

@@ -45,7 +45,10 @@ int Run(const RunArgs& a) {
   }
   if (a.recording.path.empty()) throw CLI::RequiredError("recording");
   const OdometryOptions odometry_options = a.odometry_flags->Resolve();
-  Recording recording = OpenRecordingInput(a.recording);
+  RecordingArgs recording_args = a.recording;
+  recording_args.source.tum.accelerometer = recording_args.source.fakenect.accelerometer =
+      odometry_options.NeedsAccelerometer();
+  Recording recording = OpenRecordingInput(recording_args);
   const Calibration& calib = recording.calib;
   const auto source = std::make_unique<FrameRangeSource>(std::move(recording.source), a.range);
   a.outputs.RefuseInputs(recording.inputs);
@@ -84,6 +87,8 @@ int Run(const RunArgs& a) {
   info << summary.Brief() << std::endl;
   if (const std::string model = MotionModelSummary(odometry, summary); !model.empty())
     info << model << std::endl;
+  if (const std::string gravity = odometry.GravityBrief(); !gravity.empty())
+    info << gravity << std::endl;
   if (const int signo = StopOnSignals::Signal(); signo != 0) {
     // Interrupted: what was computed is written; the exit code says the run is incomplete, as a
     // shell reports a command ended by that signal.

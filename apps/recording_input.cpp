@@ -104,7 +104,14 @@ Recording OpenBag(const RecordingArgs& args) {
 Recording OpenRecordingInput(const RecordingArgs& args) {
   if (!std::filesystem::exists(args.path))
     throw std::runtime_error(args.path + ": no such folder or file");
-  if (IsRosbagFile(args.path)) return OpenBag(args);
+  if (IsRosbagFile(args.path)) {
+    if (args.source.tum.accelerometer)
+      throw std::runtime_error(args.path +
+                               ": accelerometer readings are not read from ROS bags yet (their "
+                               "/imu topic); --gravity and --floor accelerometer need a TUM "
+                               "folder with accelerometer.txt or a fakenect recording");
+    return OpenBag(args);
+  }
   const bool is_file = !std::filesystem::is_directory(args.path);
   if (is_file && !IsAssociationFile(args.path))
     throw std::runtime_error(args.path +

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rgbdvo/sensor/kinect_accelerometer.hpp"
 #include "rgbdvo/sensor/kinect_depth.hpp"
 
 namespace rgbdvo {
@@ -76,7 +77,8 @@ KinectSource::KinectSource(const KinectSourceOptions& options)
   freenect_set_log_level(ctx_, FREENECT_LOG_FATAL);
   freenect_select_subdevices(
       ctx_, static_cast<freenect_device_flags>(
-                FREENECT_DEVICE_CAMERA | (options_.record_accel ? FREENECT_DEVICE_MOTOR : 0)));
+                FREENECT_DEVICE_CAMERA |
+                (options_.record_accel || options_.read_accel ? FREENECT_DEVICE_MOTOR : 0)));
   const int devices = freenect_num_devices(ctx_);
   if (devices <= 0)
     fail(
@@ -165,8 +167,8 @@ void KinectSource::HandleFrame(bool is_depth, const void* data, uint32_t timesta
     const bool limit = options_.max_frames > 0 &&
                        pairs_before + static_cast<int>(pairs.size()) >= options_.max_frames;
     if (recorder_ && !(limit && !is_depth)) Record({is_depth ? 'd' : 'r', t, timestamp, image});
-    Deliver(std::move(pairs));
-    last_frame_us_ = WallClockMicros();  // waiting for the consumer is not a stalled device
+    // Delivered by Loop once the events are processed, with the accelerometer read after them.
+    for (StampedPair<LiveFrame>& p : pairs) pending_.push_back(std::move(p));
     if (limit) End(CaptureEnd::kFrameLimit, std::to_string(options_.max_frames) + " frames");
   } catch (...) {
     SetError(std::current_exception());
@@ -206,7 +208,7 @@ void KinectSource::RecordLoop() {
 void KinectSource::Deliver(std::vector<StampedPair<LiveFrame>> pairs) {
   for (StampedPair<LiveFrame>& p : pairs) {
     RawPair item{p.color.value.host_us, p.depth.value.host_us, std::move(p.color.value.data),
-                 p.depth.value.data};
+                 p.depth.value.data, gravity_in_cam_};
     {
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_.pairs;
@@ -234,6 +236,23 @@ void KinectSource::End(CaptureEnd end, const std::string& reason) {
   quit_ = true;
 }
 
+void KinectSource::ReadAccelerometer() {
+  const bool record_accel = recorder_ && options_.record_accel;
+  if (!depth_this_call_ || !(record_accel || options_.read_accel) || !accel_ok_ || quit_) return;
+  // The accelerometer state after each depth frame, as fakenect-record does per event.
+  if (freenect_update_tilt_state(dev_) < 0) {
+    accel_ok_ = false;
+  } else if (const freenect_raw_tilt_state* s = freenect_get_tilt_state(dev_)) {
+    const cv::Mat bytes(1, sizeof(*s), CV_8UC1, const_cast<freenect_raw_tilt_state*>(s));
+    if (record_accel) Record({'a', WallClockMicros(), last_depth_ts_, bytes.clone()});
+    const Eigen::Vector3d reading =
+        KinectAccelFromCounts(s->accelerometer_x, s->accelerometer_y, s->accelerometer_z);
+    // All zero: no state yet (a replay before its first entry).
+    if (options_.read_accel && reading.norm() > 0)
+      gravity_in_cam_ = ApparentGravityFromKinectAccel(reading);
+  }
+}
+
 void KinectSource::Loop() {
   const int64_t start = WallClockMicros();
   last_frame_us_ = start;
@@ -255,6 +274,11 @@ void KinectSource::Loop() {
     depth_this_call_ = false;
     timeval timeout{0, 100000};
     const int rc = freenect_process_events_timeout(ctx_, &timeout);
+    if (rc >= 0) ReadAccelerometer();
+    if (!pending_.empty()) {
+      Deliver(std::exchange(pending_, {}));
+      last_frame_us_ = WallClockMicros();  // waiting for the consumer is not a stalled device
+    }
     if (rc == kLibusbErrorInterrupted) continue;
     if (rc < 0) {
       if (UnderFakenect())
@@ -263,15 +287,6 @@ void KinectSource::Loop() {
         End(CaptureEnd::kDeviceLost,
             "device lost (freenect_process_events returned " + std::to_string(rc) + ")");
       break;
-    }
-    if (depth_this_call_ && recorder_ && options_.record_accel && accel_ok_ && !quit_) {
-      // The accelerometer state after each depth frame, as fakenect-record does per event.
-      if (freenect_update_tilt_state(dev_) < 0) {
-        accel_ok_ = false;
-      } else if (const freenect_raw_tilt_state* s = freenect_get_tilt_state(dev_)) {
-        const cv::Mat bytes(1, sizeof(*s), CV_8UC1, const_cast<freenect_raw_tilt_state*>(s));
-        Record({'a', WallClockMicros(), last_depth_ts_, bytes.clone()});
-      }
     }
   }
   bool limit_or_error;
@@ -319,6 +334,7 @@ std::optional<Frame> KinectSource::Next() {
       f.timestamp = static_cast<double>(item->depth_us) * 1e-6;  // the pose's time
       f.color_timestamp = static_cast<double>(item->color_us) * 1e-6;
       f.name = "kinect frame " + std::to_string(f.index);
+      f.gravity_in_cam = item->gravity_in_cam;
       cv::cvtColor(item->rgb, f.bgr, cv::COLOR_RGB2BGR);
       f.depth_m = DepthFromKinectRaw(item->raw);
       return f;

@@ -34,9 +34,14 @@ void OdometryOptions::Check() const {
   if (motion != "6dof" && motion != "planar")
     throw std::invalid_argument("OdometryOptions.motion must be 6dof or planar, not '" + motion +
                                 "'");
-  if (floor != "depth" && floor != "given")
-    throw std::invalid_argument("OdometryOptions.floor must be depth or given, not '" + floor +
-                                "'");
+  if (floor != "depth" && floor != "accelerometer" && floor != "given")
+    throw std::invalid_argument(
+        "OdometryOptions.floor must be depth, accelerometer or given, not '" + floor + "'");
+  gravity.Check();
+  if (gravity_correction && motion == "planar")
+    throw std::invalid_argument(
+        "OdometryOptions.gravity_correction corrects roll and pitch, which motion planar holds "
+        "fixed: use one or the other");
   if (!(std::abs(mount_pitch_deg) < 90 && std::abs(mount_roll_deg) < 90))
     throw std::invalid_argument(
         "OdometryOptions.mount_pitch_deg and mount_roll_deg must be within (-90, 90)");
@@ -110,6 +115,7 @@ Odometry::Odometry(const OdometryOptions& options, const Calibration& calib)
     d.depth_noise_coeff = options_.refine.depth_noise_coeff;
     depth_aligner_ = std::make_unique<DepthAligner>(d, calib_);
   }
+  if (options_.gravity_correction) gravity_.emplace(options_.gravity);
 }
 
 FrameResult Odometry::Process(const Frame& frame) {
@@ -270,6 +276,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     started_ = true;
     key_ = last_ = cur;
     has_before_ = false;
+    CorrectTilt(frame);
     r.status = FrameStatus::kFirst;
     return r;
   }
@@ -299,6 +306,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     const bool new_keyframe = !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
                                 options_.keyframe_inlier_ratio > 0);
     Advance(std::move(cur), new_keyframe);
+    CorrectTilt(frame);
     r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
     r.world_from_cam = last_.world_from_cam;
     r.velocity = LastVelocity();
@@ -321,6 +329,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
         cur.world_from_cam_6dof =
             last_.world_from_cam_6dof * last_.world_from_cam.inverse() * cur.world_from_cam;
       Advance(std::move(cur), false);
+      CorrectTilt(frame);
       r.status = FrameStatus::kDepth;
       r.world_from_cam = last_.world_from_cam;
       r.velocity = LastVelocity();
@@ -354,7 +363,12 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
 
 void Odometry::SetUpMotionModel(const Frame& first) {
   if (options_.motion != "planar") {
-    motion_brief_ = "6-DOF";
+    std::ostringstream brief;
+    brief << "6-DOF";
+    if (gravity_)
+      brief << ", roll and pitch pulled toward the accelerometer's gravity (time constant "
+            << options_.gravity.time_constant_s << " s)";
+    motion_brief_ = brief.str();
     return;
   }
   std::ostringstream brief;
@@ -364,6 +378,18 @@ void Odometry::SetUpMotionModel(const Frame& first) {
         FloorNormalFromMount(options_.mount_pitch_deg, options_.mount_roll_deg));
     brief << ", mount given: pitch " << options_.mount_pitch_deg << " deg, roll "
           << options_.mount_roll_deg << " deg";
+  } else if (options_.floor == "accelerometer") {
+    if (!first.gravity_in_cam)
+      throw std::runtime_error("--motion planar --floor accelerometer: frame " +
+                               std::to_string(first.index) +
+                               " has no accelerometer reading; use --floor depth or given");
+    const Eigen::Vector3d normal = first.gravity_in_cam->normalized();
+    level_from_cam_ = LevelFromFloorNormal(normal);
+    // FloorNormalFromMount's angles: normal = (sin roll, cos roll cos pitch, cos roll sin pitch).
+    brief << ", floor's normal from frame " << first.index << "'s accelerometer reading: pitch "
+          << std::atan2(normal.z(), normal.y()) * 180 / M_PI << " deg, roll "
+          << std::asin(normal.x()) * 180 / M_PI << " deg (|a| " << std::setprecision(2)
+          << first.gravity_in_cam->norm() << " m/s^2)";
   } else {
     Rng rng(options_.seed);
     const FloorFit fit = FitFloor(FloorFitOptions{}, calib_, first.depth_m, rng);
@@ -377,6 +403,34 @@ void Odometry::SetUpMotionModel(const Frame& first) {
   }
   options_.refine.planar_level_from_cam = level_from_cam_;
   motion_brief_ = brief.str();
+}
+
+void Odometry::CorrectTilt(const Frame& frame) {
+  if (!gravity_ || !frame.gravity_in_cam) return;
+  // The accelerometer reads g - a. A camera turning at w while moving at v (both in its own
+  // frame, the odometry's last velocity) accelerates by w x v toward the turn's centre: on a
+  // robot's turn (0.4 m/s at 38 deg/s) 0.27 m/s^2, 1.6 degrees of tilt if taken for gravity
+  // and nearly 1 g in magnitude, so the weight cannot tell. Put back, it leaves the changes of
+  // speed, which average out over the time constant. (Measured on the synthetic robot's first
+  // 740 frames, median tilt against the truth: 0.22 degrees without it, 0.03 with it.)
+  const Velocity v = LastVelocity();
+  const Eigen::Vector3d gravity =
+      *frame.gravity_in_cam + v.rotation_per_s.cross(v.translation_per_s);
+  const Rigid3d correction = gravity_->Update(last_.world_from_cam, gravity, frame.color_timestamp);
+  for (Rigid3d* pose : {&key_.world_from_cam, &last_.world_from_cam, &world_from_before_}) {
+    *pose = correction * *pose;
+    pose->linear() = NearestRotation(pose->linear());
+  }
+}
+
+std::string Odometry::GravityBrief() const {
+  if (!gravity_) return "";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << "gravity: " << gravity_->readings()
+    << " frames with an accelerometer reading, mean weight " << gravity_->mean_weight()
+    << ", largest tilt against a reading " << gravity_->max_tilt_deg() << " deg (time constant "
+    << options_.gravity.time_constant_s << " s)";
+  return s.str();
 }
 
 Velocity Odometry::LastVelocity() const {

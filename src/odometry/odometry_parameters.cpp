@@ -57,8 +57,8 @@ const std::vector<OdometryParameter> kParameters = {
      "6dof (any motion) or planar (a camera on a robot driving on a flat floor: x, z and yaw)",
      [](O& o) -> ParameterRef { return &o.motion; }},
     {"motion.floor", "floor",
-     "planar: the floor's normal from the first frame's depth (depth) or --mount-pitch and "
-     "--mount-roll (given)",
+     "planar: the floor's normal from the first frame's depth (depth), its accelerometer reading "
+     "(accelerometer) or --mount-pitch and --mount-roll (given)",
      [](O& o) -> ParameterRef { return &o.floor; }},
     {"motion.mount_pitch_deg", "mount-pitch",
      "planar, --floor given: the camera's pitch against the floor, deg (+: looks down)",
@@ -66,6 +66,16 @@ const std::vector<OdometryParameter> kParameters = {
     {"motion.mount_roll_deg", "mount-roll",
      "planar, --floor given: the camera's roll against the floor, deg",
      [](O& o) -> ParameterRef { return &o.mount_roll_deg; }},
+    {"gravity.enabled", "gravity",
+     "correct roll and pitch drift toward the accelerometer's gravity (TUM accelerometer.txt, "
+     "fakenect a- entries, a live Kinect; not with --motion planar)",
+     [](O& o) -> ParameterRef { return &o.gravity_correction; }},
+    {"gravity.time_constant_s", "gravity-time-constant",
+     "gravity: seconds for the pull toward the accelerometer to close 63 % of a tilt error",
+     [](O& o) -> ParameterRef { return &o.gravity.time_constant_s; }},
+    {"gravity.magnitude_sigma_mps2", "gravity-sigma",
+     "gravity: a reading's weight falls as exp(-((|a| - g) / sigma)^2 / 2), m/s^2",
+     [](O& o) -> ParameterRef { return &o.gravity.magnitude_sigma_mps2; }},
     {"verify.min_inliers", "min-inliers", "reject a frame with fewer inliers (paper: 15)",
      [](O& o) -> ParameterRef { return &o.verify.min_inliers; }},
     {"verify.max_translation_m", "max-translation",

@@ -1,14 +1,19 @@
 #include "rgbdvo/sources/fakenect_files.hpp"
 
+#include <libfreenect.h>
+
 #include <cctype>
 #include <cinttypes>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <stdexcept>
+
+#include "rgbdvo/sensor/kinect_accelerometer.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -155,6 +160,17 @@ cv::Mat ReadFakenectColor(const std::string& path) {
   cv::Mat bgr;
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
   return bgr;
+}
+
+Eigen::Vector3d ReadFakenectAccel(const std::string& path) {
+  const std::string bytes = ReadWholeFile(path, "accelerometer entry");
+  freenect_raw_tilt_state state{};
+  if (bytes.size() != sizeof(state))
+    throw std::runtime_error(
+        path + ": an accelerometer entry must be " + std::to_string(sizeof(state)) +
+        " bytes (freenect_raw_tilt_state), not " + std::to_string(bytes.size()));
+  std::memcpy(&state, bytes.data(), sizeof(state));
+  return KinectAccelFromCounts(state.accelerometer_x, state.accelerometer_y, state.accelerometer_z);
 }
 
 cv::Mat ReadFakenectDepth(const std::string& path) {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/sensor/kinect_accelerometer.hpp"
 #include "rgbdvo/sensor/kinect_depth.hpp"
 #include "rgbdvo/sources/fakenect_files.hpp"
 #include "rgbdvo/sources/stream_pairer.hpp"
@@ -67,6 +68,7 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
     for (auto& p : done) pairs_.emplace_back(std::move(p.color.value), std::move(p.depth.value));
   };
   std::vector<FakenectName> parsed;
+  std::vector<Entry> accel;
   for (size_t i = 0; i < names.size(); ++i) {
     const std::optional<FakenectName> name = ParseFakenectName(names[i]);
     if (!name)
@@ -98,6 +100,7 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
       add(pairer.AddDepth(e));
     } else {
       ++accel_entries_;
+      accel.push_back(e.value);
     }
   }
   add(pairer.Finish());
@@ -111,6 +114,18 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
                              " colour and " + std::to_string(depth_frames_) +
                              " depth frames in INDEX.txt, no pair within " +
                              std::to_string(options_.max_time_diff_s) + " s)");
+  if (options_.accelerometer) {
+    if (accel.empty())
+      throw std::runtime_error(folder +
+                               ": no accelerometer entries (a-*.dump; accelerometer "
+                               "readings needed)");
+    std::vector<AccelReading> readings;
+    readings.reserve(accel.size());
+    for (const Entry& a : accel)
+      readings.push_back({a.seconds, ApparentGravityFromKinectAccel(
+                                         ReadFakenectAccel((fs::path(folder) / a.file).string()))});
+    accelerometer_ = AccelerometerTrack(std::move(readings));
+  }
 }
 
 std::optional<Frame> FakenectSource::Next() {
@@ -121,6 +136,7 @@ std::optional<Frame> FakenectSource::Next() {
   f.timestamp = depth.seconds;  // the pose comes from the depth image (frame.hpp)
   f.color_timestamp = color.seconds;
   f.name = color.file;
+  if (options_.accelerometer) f.gravity_in_cam = accelerometer_.GravityAt(color.seconds);
   f.bgr = ReadFakenectColor((fs::path(folder_) / color.file).string());
   f.depth_m = DepthFromKinectRaw(ReadFakenectDepth((fs::path(folder_) / depth.file).string()));
   ++next_;

@@ -67,6 +67,7 @@ TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
     throw std::runtime_error(folder + ": empty sequence (" + std::to_string(rgb.size()) +
                              " rgb frames, none with a depth frame within " +
                              std::to_string(options_.max_time_diff_s) + " s)");
+  ReadAccelerometer();
 }
 
 TumSource::TumSource(const std::string& folder, std::vector<TumPair> pairs,
@@ -74,6 +75,16 @@ TumSource::TumSource(const std::string& folder, std::vector<TumPair> pairs,
     : folder_(folder), origin_(origin), options_(options), pairs_(std::move(pairs)) {
   options_.Check();
   if (pairs_.empty()) throw std::runtime_error(origin + ": empty sequence (no pair)");
+  ReadAccelerometer();
+}
+
+void TumSource::ReadAccelerometer() {
+  if (!options_.accelerometer) return;
+  const std::string path = (fs::path(folder_) / "accelerometer.txt").string();
+  if (!fs::is_regular_file(path))
+    throw std::runtime_error(folder_ + ": no accelerometer.txt (accelerometer readings needed)");
+  accelerometer_ = AccelerometerTrack(ReadTumAccelerometer(path));
+  if (accelerometer_.size() == 0) throw std::runtime_error(path + ": no reading");
 }
 
 std::optional<Frame> TumSource::Next() {
@@ -86,6 +97,7 @@ std::optional<Frame> TumSource::Next() {
   f.timestamp = p.depth.timestamp;
   f.color_timestamp = p.rgb.timestamp;
   f.name = p.rgb.path;
+  if (options_.accelerometer) f.gravity_in_cam = accelerometer_.GravityAt(f.color_timestamp);
   f.bgr = ReadImage(rgb_path, cv::IMREAD_COLOR);
   if (f.bgr.empty())
     throw std::runtime_error(rgb_path +
@@ -116,6 +128,7 @@ std::string TumSource::Describe() const {
   if (!origin_.empty()) {
     s << "association file " << origin_ << ": " << pairs_.size() << " rgb-depth pairs as given, "
       << "depth " << options_.depth_units_per_m << " units per metre";
+    if (options_.accelerometer) s << ", " << accelerometer_.size() << " accelerometer readings";
     return s.str();
   }
   s << "TUM RGB-D folder " << folder_ << ": " << pairs_.size() << " rgb-depth pairs within "
@@ -123,6 +136,7 @@ std::string TumSource::Describe() const {
     << (options_.pairing == Pairing::kOneToOne ? " (one to one)" : "") << ", " << unpaired_.size()
     << " rgb frames without depth, "
     << "depth " << options_.depth_units_per_m << " units per metre";
+  if (options_.accelerometer) s << ", " << accelerometer_.size() << " accelerometer readings";
   return s.str();
 }
 

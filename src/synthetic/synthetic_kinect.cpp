@@ -12,16 +12,13 @@
 
 #include "rgbdvo/capture/fakenect_recorder.hpp"
 #include "rgbdvo/io/trajectory_io.hpp"
+#include "rgbdvo/sensor/kinect_accelerometer.hpp"
 #include "rgbdvo/sensor/kinect_depth.hpp"
 #include "rgbdvo/sources/fakenect_files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rgbdvo {
-namespace {
-constexpr double kGravity = 9.80665;  // m/s^2
-}  // namespace
-
 void SyntheticKinectOptions::Check() const {
   if (ir_in_color.z() != 0.0)
     throw std::invalid_argument("SyntheticKinectOptions.ir_in_color.z must be 0");
@@ -97,17 +94,18 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
     cv::cvtColor(scene.RenderColor(o.color, world_from_color[k]), rgb, cv::COLOR_BGR2RGB);
     recorder.AddColor(t, ts, rgb.ptr<uint8_t>(), rgb.cols, rgb.rows);
     if (o.accelerometer) {
-      // Gravity is +y (down) in the world frame; 819 counts per g (libfreenect.h).
+      // Gravity is +y (down) in the world frame; in the Kinect's axes (kinect_accelerometer.hpp).
       Eigen::Vector3d apparent_in_g(0, 1, 0);
       if (o.camera_acceleration && n >= 3) {  // at the ends, the acceleration next to them
         const size_t i = std::clamp<size_t>(k, 1, n - 2);
         apparent_in_g -=
             (world_from_color[i + 1].translation() - 2 * world_from_color[i].translation() +
              world_from_color[i - 1].translation()) /
-            (dt * dt * kGravity);
+            (dt * dt * kStandardGravity);
       }
       const Eigen::Vector3d g =
-          world_from_color[k].linear().transpose() * apparent_in_g * FREENECT_COUNTS_PER_G;
+          KinectAccelFromApparentGravity(world_from_color[k].linear().transpose() * apparent_in_g) *
+          kKinectAccelCountsPerG;
       freenect_raw_tilt_state state{};
       state.accelerometer_x = static_cast<int16_t>(std::lround(g.x()));
       state.accelerometer_y = static_cast<int16_t>(std::lround(g.y()));

@@ -481,3 +481,30 @@ TEST_CASE("rgbdvo run writes TUM trajectories a strict reader accepts: 8 numbers
     }
   }
 }
+
+TEST_CASE("rgbdvo run --gravity reads the folder's accelerometer and says what it did") {
+  const std::string dir = SyntheticFolder();
+  const std::string calib = SyntheticCalib(dir);
+  int code = 0;
+  std::string out = Run(dir + " --calib " + calib + " --gravity", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("no accelerometer.txt"));
+  out = Run(dir + " --calib " + calib + " --motion planar --floor accelerometer", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("no accelerometer.txt"));
+  // A camera held still and level: readings of 1 g straight down (+y, -z reversed: 0).
+  {
+    std::ofstream accel(dir + "/accelerometer.txt");
+    accel << "# timestamp ax ay az\n";
+    for (int k = 0; k < 12; ++k) accel << std::fixed << 1000 + k / 60.0 << " 0 9.80665 0\n";
+  }
+  out = Run(dir + " --calib " + calib + " --gravity", &code);
+  INFO(out);
+  CHECK(code == 0);
+  CHECK_THAT(out, Catch::Contains("12 accelerometer readings") &&
+                      Catch::Contains("roll and pitch pulled toward the accelerometer") &&
+                      Catch::Contains("gravity: 6 frames with an accelerometer reading"));
+  out = Run(dir + " --calib " + calib + " --gravity --motion planar --floor given", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("gravity_correction") && Catch::Contains("planar"));
+}

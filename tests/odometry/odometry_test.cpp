@@ -404,3 +404,71 @@ TEST_CASE("Planar motion without a floor in view needs the mount given") {
   options.motion = "3dof";
   CHECK_THROWS_WITH(options.Check(), Catch::Contains("motion must be 6dof or planar"));
 }
+
+TEST_CASE("Planar motion can take the floor's normal from the first frame's accelerometer") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  Rigid3d world_from_first;
+  const std::vector<Rigid3d> path = RobotPath(8, &world_from_first);
+  OdometryOptions options;
+  options.motion = "planar";
+  options.floor = "accelerometer";
+  Odometry odometry(options, CalibFor(cam));
+  Frame first = Render(scene, cam, world_from_first * path[0], 0);
+  CHECK_THROWS_WITH(odometry.Process(first), Catch::Contains("has no accelerometer reading"));
+  const Eigen::Vector3d down(0, 9.80665, 0);  // the room's floor is at +y
+  Odometry with_reading(options, CalibFor(cam));
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    Frame f = Render(scene, cam, world_from_first * path[i], i);
+    f.gravity_in_cam = (world_from_first * path[i]).linear().transpose() * down;
+    const FrameResult r = with_reading.Process(f);
+    INFO("frame " << i << " " << r.StatusString() << "; " << with_reading.MotionModelBrief());
+    REQUIRE(HasEstimate(r.status));
+    CHECK(RotationErrorDeg(r.world_from_cam, path[i]) < 0.1);
+    CHECK(TranslationError(r.world_from_cam, path[i]) < 0.005);
+  }
+  // The mount: pitched 20 degrees down, rolled 2 degrees (RobotPath).
+  CHECK_THAT(with_reading.MotionModelBrief(),
+             Catch::Contains("accelerometer reading: pitch 20.0 deg, roll") &&
+                 Catch::Contains("|a| 9.81 m/s^2"));
+  options.gravity_correction = true;
+  CHECK_THROWS_WITH(options.Check(), Catch::Contains("gravity_correction"));
+}
+
+TEST_CASE("Gravity: readings that say a still camera has rolled pull it and the poses after it") {
+  // The features say the camera stands still; after the first time constant (0.5 s, whose
+  // readings set the world's down) the accelerometer says it has rolled 3 degrees. Every frame
+  // turns the pose by 1/15 of the remaining disagreement, and the frames chained after it keep
+  // that turn: after 24 frames 1 - (14/15)^24 = 81 % of the roll is taken.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  OdometryOptions options;
+  options.gravity_correction = true;
+  options.gravity.time_constant_s = 0.5;
+  Odometry odometry(options, CalibFor(cam));
+  const Frame still = Render(scene, cam, Rigid3d::Identity(), 0);
+  const Eigen::Vector3d down(0, 9.80665, 0);
+  const Eigen::Matrix3d roll = Eigen::AngleAxisd(3 * M_PI / 180, Eigen::Vector3d::UnitZ()).matrix();
+  FrameResult r;
+  int window = 0, corrected = 0;
+  for (int i = 0; i < 40; ++i) {
+    Frame f = still;
+    f.index = i;
+    f.timestamp = f.color_timestamp = i / 30.0;
+    const bool settled = f.color_timestamp > options.gravity.time_constant_s;
+    (settled ? corrected : window)++;
+    f.gravity_in_cam = settled ? Eigen::Vector3d(roll.transpose() * down) : down;
+    r = odometry.Process(f);
+    REQUIRE(HasFeatureEstimate(r.status));
+    if (!settled) CHECK(RotationErrorDeg(r.world_from_cam, Rigid3d::Identity()) < 1e-6);
+  }
+  REQUIRE(corrected == 24);
+  Rigid3d expected = Rigid3d::Identity();
+  expected.linear() =
+      Eigen::AngleAxisd((1 - std::pow(14.0 / 15, 24)) * 3 * M_PI / 180, Eigen::Vector3d::UnitZ())
+          .matrix();
+  INFO(odometry.GravityBrief());
+  CHECK(RigidNear(r.world_from_cam, expected, 0.02, 1e-4));
+  CHECK_THAT(odometry.GravityBrief(), Catch::Contains("40 frames with an accelerometer reading"));
+  CHECK_THAT(odometry.MotionModelBrief(), Catch::Contains("roll and pitch pulled toward"));
+}

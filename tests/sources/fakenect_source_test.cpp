@@ -6,6 +6,7 @@
 #include <fstream>
 #include <random>
 
+#include "rgbdvo/sensor/kinect_accelerometer.hpp"
 #include "rgbdvo/sensor/kinect_depth.hpp"
 #include "rgbdvo/sources/fakenect_files.hpp"
 #include "rgbdvo/sources/open_source.hpp"
@@ -65,6 +66,46 @@ TEST_CASE("FakenectSource pairs each colour frame with its depth frame, in metre
     CHECK(cv::norm(truth, f->depth_m, cv::NORM_INF, close) < 0.01);
   }
   CHECK(!source.Next());
+}
+
+TEST_CASE("FakenectSource gives each frame the accelerometer's gravity in the camera frame") {
+  const std::string dir = SmallRecording("fsrc_accel", 3);
+  FakenectSourceOptions options;
+  options.accelerometer = true;
+  FakenectSource source(dir, options);
+  const std::vector<Rigid3d> path = MakeKinectRangePath(3);
+  for (int k = 0; k < 3; ++k) {
+    const std::optional<Frame> f = source.Next();
+    REQUIRE(f);
+    REQUIRE(f->gravity_in_cam);
+    // The synthetic world's down is +y; written in the Kinect's axes and counts, read back.
+    const Eigen::Vector3d truth =
+        path[k].linear().transpose() * Eigen::Vector3d(0, kStandardGravity, 0);
+    INFO("frame " << k << ": " << f->gravity_in_cam->transpose() << " against "
+                  << truth.transpose());
+    CHECK((*f->gravity_in_cam - truth).norm() < 0.02);  // 1.5 counts of 0.012 m/s^2
+  }
+  FakenectSource without(dir, {});
+  CHECK_FALSE(without.Next()->gravity_in_cam);
+}
+
+TEST_CASE("FakenectSource: accelerometer readings asked for but absent or broken are errors") {
+  const std::string dir = SmallRecording("fsrc_accel_bad", 2);
+  const std::vector<std::string> names = IndexLines(dir);  // r a d r a d
+  FakenectSourceOptions options;
+  options.accelerometer = true;
+  SECTION("a truncated entry is named") {
+    fs::resize_file(dir + "/" + names[4], 3);
+    CHECK_THROWS_WITH(FakenectSource(dir, options), Catch::Contains(names[4]));
+  }
+  SECTION("a recording without entries says so") {
+    std::ofstream index(dir + "/INDEX.txt", std::ios::trunc);
+    for (const std::string& n : names)
+      if (n[0] != 'a') index << n << "\n";
+    index.close();
+    CHECK_THROWS_WITH(FakenectSource(dir, options), Catch::Contains("no accelerometer entries"));
+    CHECK_NOTHROW(FakenectSource(dir, {}));
+  }
 }
 
 TEST_CASE("FakenectSource reads an INDEX.txt with CRLF line ends and blank lines") {

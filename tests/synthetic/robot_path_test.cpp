@@ -1,11 +1,8 @@
 #include "rgbdvo/synthetic/robot_path.hpp"
 
-#include <libfreenect.h>
-
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -15,6 +12,7 @@
 #include "rgbdvo/io/trajectory_io.hpp"
 #include "rgbdvo/odometry/odometry.hpp"
 #include "rgbdvo/pipeline/run.hpp"
+#include "rgbdvo/sensor/kinect_accelerometer.hpp"
 #include "rgbdvo/sensor/kinect_depth.hpp"
 #include "rgbdvo/sources/fakenect_files.hpp"
 #include "rgbdvo/sources/fakenect_source.hpp"
@@ -158,21 +156,19 @@ TEST_CASE("The robot recording's depth has the Kinect's noise, sigma = 1.425e-3 
 }
 
 TEST_CASE("The robot's accelerometer reads gravity and the centripetal acceleration") {
-  // Apparent gravity g - a in the colour camera's frame, 819 counts per g: on the straight the
-  // world's down; in the turn also v^2 / r = 0.267 m/s^2 = 22.3 counts away from the centre.
+  // Apparent gravity g - a in the colour camera's frame as the library reads it back: on the
+  // straight the world's down; in the turn also v^2 / r = 0.267 m/s^2 away from the centre
+  // (within one count, 0.012 m/s^2).
   const RobotPathOptions o = SharedPath();
   const std::vector<Rigid3d> path = MakeRobotPath(o, kFrames);
   std::vector<Eigen::Vector3d> readings;
   for (const std::string& name : ReadFakenectIndex(Recording() + "/INDEX.txt")) {
     if (name[0] != 'a') continue;
-    const std::string bytes = Slurp(Recording() + "/" + name);
-    freenect_raw_tilt_state state{};
-    REQUIRE(bytes.size() == sizeof(state));
-    std::memcpy(&state, bytes.data(), sizeof(state));
-    readings.emplace_back(state.accelerometer_x, state.accelerometer_y, state.accelerometer_z);
+    readings.push_back(ApparentGravityFromKinectAccel(ReadFakenectAccel(Recording() + "/" + name)));
   }
   REQUIRE(readings.size() == static_cast<size_t>(kFrames));
-  const double centripetal = o.speed_mps * o.speed_mps / o.turn_radius_m / 9.80665 * 819;
+  const double centripetal = o.speed_mps * o.speed_mps / o.turn_radius_m;
+  const double count = kStandardGravity / kKinectAccelCountsPerG;
   for (int k : {5, 30, 60, 70}) {
     const bool turning = k * o.speed_mps / o.frame_rate_hz > 0.5 + 0.02;
     const Eigen::Vector3d in_world = path[k].linear() * readings[k];
@@ -180,8 +176,8 @@ TEST_CASE("The robot's accelerometer reads gravity and the centripetal accelerat
     const Eigen::Vector3d right = path[k].linear() * Eigen::Vector3d::UnitX();
     const Eigen::Vector3d right_level = Eigen::Vector3d(right.x(), 0, right.z()).normalized();
     INFO("frame " << k << " reading in world " << in_world.transpose());
-    CHECK(in_world.y() == Approx(819).margin(1.0));
-    CHECK(-in_world.dot(right_level) == Approx(turning ? centripetal : 0).margin(1.0));
+    CHECK(in_world.y() == Approx(kStandardGravity).margin(count));
+    CHECK(-in_world.dot(right_level) == Approx(turning ? centripetal : 0).margin(count));
   }
 }
 

@@ -10,14 +10,17 @@
 // slower than the camera, the queue drops the oldest pair ("newest wins") and counts it, so
 // the odometry stays near real time and memory stays bounded; the recording keeps every frame.
 
+#include <Eigen/Core>
 #include <atomic>
 #include <cstdint>
 #include <exception>
 #include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "rgbdvo/capture/fakenect_recorder.hpp"
 #include "rgbdvo/sources/frame_source.hpp"
@@ -41,7 +44,10 @@ struct KinectSourceOptions {
   Pairing pairing = Pairing::kNearest;  // stream_pairer.hpp; kOneToOne uses each depth frame once
   std::string record_folder;            // "" = do not record
   bool record_accel = true;             // also record accelerometer entries (a-*.dump)
-  double stall_timeout_s = 5.0;         // no frame for this long: treat the device as lost, s
+  // Give each frame the accelerometer's latest reading (Frame::gravity_in_cam), read after each
+  // depth frame.
+  bool read_accel = false;
+  double stall_timeout_s = 5.0;             // no frame for this long: treat the device as lost, s
   const std::atomic<bool>* stop = nullptr;  // stop when it becomes true (e.g. set on SIGINT)
   void Check() const;
 };
@@ -90,9 +96,10 @@ class KinectSource : public FrameSource {
     cv::Mat data;
   };
   struct RawPair {
-    int64_t color_us = 0, depth_us = 0;  // capture times (DeviceTimeOnHostClock)
-    cv::Mat rgb;                         // CV_8UC3, RGB order
-    cv::Mat raw;                         // CV_16UC1 raw disparity
+    int64_t color_us = 0, depth_us = 0;             // capture times (DeviceTimeOnHostClock)
+    cv::Mat rgb;                                    // CV_8UC3, RGB order
+    cv::Mat raw;                                    // CV_16UC1 raw disparity
+    std::optional<Eigen::Vector3d> gravity_in_cam;  // with read_accel
   };
   static void OnVideo(_freenect_device* dev, void* data, uint32_t timestamp);
   static void OnDepth(_freenect_device* dev, void* data, uint32_t timestamp);
@@ -104,6 +111,8 @@ class KinectSource : public FrameSource {
     cv::Mat data;  // image, or the accelerometer state's bytes as one row
   };
   void HandleFrame(bool is_depth, const void* data, uint32_t timestamp);
+  // After events with a depth frame: records the accelerometer state and keeps its reading.
+  void ReadAccelerometer();
   void Record(const RecordJob& job);
   void RecordLoop();
   void SetError(std::exception_ptr error);
@@ -126,7 +135,9 @@ class KinectSource : public FrameSource {
   uint32_t last_depth_ts_ = 0;
   int64_t last_frame_us_ = 0;
   bool accel_ok_ = true;
-  mutable std::mutex mutex_;  // guards stats_ and error_
+  std::optional<Eigen::Vector3d> gravity_in_cam_;  // the latest reading (device thread)
+  std::vector<StampedPair<LiveFrame>> pending_;    // pairs of the events being processed
+  mutable std::mutex mutex_;                       // guards stats_ and error_
   CaptureStats stats_;
   std::exception_ptr error_;
 };

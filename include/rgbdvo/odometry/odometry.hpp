@@ -17,6 +17,7 @@
 #include "rgbdvo/features/matching.hpp"
 #include "rgbdvo/geometry/geometry.hpp"
 #include "rgbdvo/geometry/motion_prior.hpp"
+#include "rgbdvo/odometry/gravity_correction.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
 #include "rgbdvo/sources/frame.hpp"
@@ -74,17 +75,24 @@ struct OdometryOptions {
   // depth fallback's estimate projected onto them (ProjectPlanar).
   std::string motion = "6dof";
   // With "planar", where the floor's normal in the camera frame comes from: "depth" = a plane
-  // fitted to the first frame's depth image (FitFloor; the floor must be in view), "given" =
-  // mount_pitch_deg and mount_roll_deg.
+  // fitted to the first frame's depth image (FitFloor; the floor must be in view),
+  // "accelerometer" = the first frame's accelerometer reading (the robot standing still),
+  // "given" = mount_pitch_deg and mount_roll_deg.
   std::string floor = "depth";
   double mount_pitch_deg = 0;  // with floor "given": the camera's pitch, deg (+: looks down)
   double mount_roll_deg = 0;   // with floor "given": its roll, deg (+: the floor's normal
                                // leans to the camera's +x; FloorFit's convention)
+  // Correct roll and pitch drift with the frames' accelerometer readings (GravityCorrection;
+  // 6-DOF only: the planar model holds them fixed).
+  bool gravity_correction = false;
+  GravityOptions gravity;
   // Use the calibration's lens distortion (dist_ir) when lifting pixels (the paper: no).
   bool undistort = true;
   uint32_t seed = 42;  // RANSAC random generator seed (fixed: runs are reproducible)
   void Check() const;
   std::string ToString() const;  // the effective configuration, one "key = value" per line
+  // True when frames must carry accelerometer readings (Frame::gravity_in_cam).
+  bool NeedsAccelerometer() const { return gravity_correction || floor == "accelerometer"; }
 };
 
 // Named configurations: "default" (rgbdvo's most accurate) and "paper" (exactly Fiala & Ufkes
@@ -161,6 +169,9 @@ class Odometry {
   std::string MotionModelBrief() const { return motion_brief_; }
   // With the planar model, once the first frame is processed: its level frame (planar_motion.hpp).
   const std::optional<Eigen::Matrix3d>& level_from_cam() const { return level_from_cam_; }
+  // With gravity_correction: the readings taken, their mean weight and the largest tilt
+  // between a frame and its reading, one line; "" without.
+  std::string GravityBrief() const;
 
  private:
   struct Reference {
@@ -190,6 +201,9 @@ class Odometry {
 
   // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy.
   void Advance(Reference cur, bool new_keyframe);
+  // With gravity_correction and a reading: turns the last estimated frame, and every pose the
+  // next frames are chained from, toward the reading's down (GravityCorrection).
+  void CorrectTilt(const Frame& frame);
   // From the frame before last_ to last_, per second of colour time (zero without both).
   Velocity LastVelocity() const;
 
@@ -200,6 +214,7 @@ class Odometry {
   std::unique_ptr<DepthAligner> depth_aligner_;    // with depth_fallback
   cv::Mat depth_rays_;                             // DepthRays, with depth_term_step
   std::optional<Eigen::Matrix3d> level_from_cam_;  // with the planar model
+  std::optional<GravityCorrection> gravity_;       // with gravity_correction
   std::string motion_brief_;
   bool started_ = false;
   Reference key_;   // what frames are matched against

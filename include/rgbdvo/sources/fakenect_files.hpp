@@ -10,6 +10,7 @@
 // <wallclock> is the host time in seconds with 6 decimals ("%f"), <devicets> the device's
 // 32-bit frame timestamp. fakenect parses both from the name and needs the header on one line.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -40,6 +41,10 @@ std::vector<std::string> ReadFakenectIndex(const std::string& path);
 // std::runtime_error naming the file when it is missing, of the wrong kind or truncated.
 cv::Mat ReadFakenectColor(const std::string& path);
 cv::Mat ReadFakenectDepth(const std::string& path);
+// An a- entry (a freenect_raw_tilt_state): the accelerometer's reading in m/s^2 (libfreenect's
+// axes, kinect_accelerometer.hpp). Throws std::runtime_error naming the file when it is missing
+// or not of the state's size.
+Eigen::Vector3d ReadFakenectAccel(const std::string& path);
 
 // Write one image in the layout above (header on one line, then the bytes). `rgb` is
 // width*height*3 bytes in RGB order; `raw` is width*height 16-bit values. The file is complete

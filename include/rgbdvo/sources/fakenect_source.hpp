@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rgbdvo/sources/accelerometer_track.hpp"
 #include "rgbdvo/sources/frame_source.hpp"
 #include "rgbdvo/sources/pairing.hpp"
 
@@ -17,6 +18,8 @@ struct FakenectSourceOptions {
   // depth frame is at most half a period away; the rest absorbs late callbacks.
   double max_time_diff_s = 0.034;
   Pairing pairing = Pairing::kNearest;  // stream_pairer.hpp; kOneToOne uses each depth frame once
+  // Read the a- entries (required then) and give each frame its gravity (Frame::gravity_in_cam).
+  bool accelerometer = false;
   void Check() const;
 };
 
@@ -47,6 +50,7 @@ class FakenectSource : public FrameSource {
   std::string folder_;
   FakenectSourceOptions options_;
   std::vector<std::pair<Entry, Entry>> pairs_;  // colour, depth
+  AccelerometerTrack accelerometer_;            // with options_.accelerometer
   bool has_index_ = true, by_device_clock_ = true;
   int color_frames_ = 0, depth_frames_ = 0, accel_entries_ = 0, unpaired_ = 0;
   size_t next_ = 0;

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "rgbdvo/sources/accelerometer_track.hpp"
 #include "rgbdvo/sources/frame_source.hpp"
 #include "rgbdvo/sources/pairing.hpp"
 
@@ -13,6 +14,8 @@ struct TumSourceOptions {
   double max_time_diff_s = 0.02;        // rgb/depth association window (TUM tools: 0.02 s)
   double depth_units_per_m = 5000.;     // 16-bit depth scale (TUM: 5000 per metre)
   Pairing pairing = Pairing::kNearest;  // pairing.hpp; kOneToOne as associate.py
+  // Read accelerometer.txt (required then) and give each frame its gravity (Frame::gravity_in_cam).
+  bool accelerometer = false;
   void Check() const;
 };
 
@@ -58,7 +61,9 @@ class TumSource : public FrameSource {
   TumSourceOptions options_;
   std::vector<TumPair> pairs_;
   std::vector<TumListEntry> unpaired_;
+  AccelerometerTrack accelerometer_;  // with options_.accelerometer
   size_t next_ = 0;
+  void ReadAccelerometer();
 };
 
 }  // namespace rgbdvo

@@ -32,9 +32,10 @@ struct SyntheticKinectOptions {
   int64_t start_us = 1700000000000000;           // wall clock of the first frame, us
   int64_t period_us = 33333;                     // frame period (30 Hz), us
   bool accelerometer = true;                     // write an a- entry per frame
-  // The accelerometer reads the apparent gravity g - a in the colour camera's frame, 819 counts
-  // per g (libfreenect.h): with camera_acceleration, a is the camera's acceleration from second
-  // differences of the poses (the centripetal v omega in a robot's turns); otherwise a = 0.
+  // The accelerometer reads the apparent gravity g - a in the colour camera's frame, in the
+  // Kinect's axes and counts (kinect_accelerometer.hpp): with camera_acceleration, a is the
+  // camera's acceleration from second differences of the poses (the centripetal v omega in a
+  // robot's turns); otherwise a = 0.
   bool camera_acceleration = false;
   // Gaussian noise on Z with sigma = 1.425e-3 Z^2 m (Khoshelham & Elberink 2012), drawn from
   // noise_seed, before the raw 11-bit disparity quantisation.
