@@ -396,7 +396,8 @@ void Odometry::SetUpMotionModel(const Frame& first) {
     if (!fit.success)
       throw std::runtime_error("--motion planar: no floor in the first frame's depth image (" +
                                fit.reason +
-                               "); start with the floor in view or give the camera's mount "
+                               "); start with the floor in view, take it from the "
+                               "accelerometer (--floor accelerometer) or give the camera's mount "
                                "with --floor given --mount-pitch DEG --mount-roll DEG");
     level_from_cam_ = fit.level_from_cam;
     brief << ", floor fitted in frame " << first.index << "'s depth: " << fit.Brief();

@@ -396,7 +396,8 @@ TEST_CASE("Planar motion without a floor in view needs the mount given") {
   OdometryOptions options;
   options.motion = "planar";
   Odometry fitted(options, CalibFor(cam));
-  CHECK_THROWS_WITH(fitted.Process(f), Catch::Contains("no floor in the first frame"));
+  CHECK_THROWS_WITH(fitted.Process(f), Catch::Contains("no floor in the first frame") &&
+                                           Catch::Contains("--floor accelerometer"));
   options.floor = "given";
   Odometry given(options, CalibFor(cam));
   CHECK(given.Process(f).status == FrameStatus::kFirst);
