@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 namespace rgbdvo {
@@ -25,6 +26,20 @@ double ParseNumber(const std::string& field, const std::string& where) {
   if (errno == ERANGE || !std::isfinite(x))
     throw std::runtime_error(where + ": '" + t + "' is not finite");
   return x;
+}
+
+std::vector<ListLine> ReadListLines(const std::string& path, const std::string& what) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open " + what);
+  std::vector<ListLine> lines;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    lines.push_back({number, line});
+  }
+  return lines;
 }
 
 }  // namespace rgbdvo

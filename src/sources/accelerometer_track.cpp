@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/io/text.hpp"
 #include "rgbdvo/sensor/kinect_accelerometer.hpp"
 
 namespace rgbdvo {
@@ -44,19 +44,14 @@ std::optional<Eigen::Vector3d> AccelerometerTrack::GravityAt(double t) const {
 }
 
 std::vector<AccelReading> ReadTumAccelerometer(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open accelerometer file");
   std::vector<AccelReading> readings;
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    const size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
+  for (const ListLine& line : ReadListLines(path, "accelerometer file")) {
+    std::istringstream fields(line.text);
     double t = 0;
     Eigen::Vector3d a;
     if (!(fields >> t >> a.x() >> a.y() >> a.z()) || !std::isfinite(t) || !a.allFinite())
-      throw std::runtime_error(path + ":" + std::to_string(line_no) +
-                               ": expected 'timestamp ax ay az', got '" + line + "'");
+      throw std::runtime_error(path + ":" + std::to_string(line.number) +
+                               ": expected 'timestamp ax ay az', got '" + line.text + "'");
     readings.push_back({t, ApparentGravityFromKinectAccel(a)});
   }
   return readings;

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rgbdvo/io/text.hpp"
+
 namespace rgbdvo {
 namespace {
 
@@ -27,17 +29,12 @@ bool IsContent(const std::string& line) {
 }  // namespace
 
 std::vector<TumPair> ReadAssociations(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open association file");
   std::vector<TumPair> pairs;
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (!IsContent(line)) continue;
+  for (const ListLine& line : ReadListLines(path, "association file")) {
     TumPair pair;
-    if (!ParseAssociation(line, &pair))
-      throw std::runtime_error(path + ":" + std::to_string(line_no) +
-                               ": expected 't_rgb rgb_path t_depth depth_path', got '" + line +
+    if (!ParseAssociation(line.text, &pair))
+      throw std::runtime_error(path + ":" + std::to_string(line.number) +
+                               ": expected 't_rgb rgb_path t_depth depth_path', got '" + line.text +
                                "'");
     pairs.push_back(pair);
   }

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "rgbdvo/io/image_reader.hpp"
+#include "rgbdvo/io/text.hpp"
 #include "rgbdvo/sensor/depth_encoding.hpp"
 
 namespace fs = std::filesystem;
@@ -23,19 +23,13 @@ void TumSourceOptions::Check() const {
 }
 
 std::vector<TumListEntry> ReadTumList(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open list file");
   std::vector<TumListEntry> entries;
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const size_t first = line.find_first_not_of(" \t");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
+  for (const ListLine& line : ReadListLines(path, "list file")) {
+    std::istringstream fields(line.text);
     TumListEntry e;
     if (!(fields >> e.timestamp >> e.path) || !std::isfinite(e.timestamp))
-      throw std::runtime_error(path + ":" + std::to_string(line_no) +
-                               ": expected 'timestamp path', got '" + line + "'");
+      throw std::runtime_error(path + ":" + std::to_string(line.number) +
+                               ": expected 'timestamp path', got '" + line.text + "'");
     entries.push_back(e);
   }
   return entries;

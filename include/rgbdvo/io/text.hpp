@@ -3,6 +3,7 @@
 // for every parser, so each refuses the same things with the same message.
 
 #include <string>
+#include <vector>
 
 namespace rgbdvo {
 
@@ -13,5 +14,14 @@ std::string Trim(const std::string& s);
 // is not a number" (empty, trailing characters: "4px") or "... is not finite" (inf, nan, out of
 // double's range). `where` names the place, e.g. "file.csv:3" or "file.txt:3: tx".
 double ParseNumber(const std::string& field, const std::string& where);
+
+// One line of a list file, without its trailing CR, and its 1-based number (for messages).
+struct ListLine {
+  int number = 0;
+  std::string text;
+};
+// The content lines of a list file (TUM's rgb.txt and accelerometer.txt, association files):
+// blank lines and '#' comments skipped. Throws std::runtime_error "<path>: cannot open <what>".
+std::vector<ListLine> ReadListLines(const std::string& path, const std::string& what);
 
 }  // namespace rgbdvo
