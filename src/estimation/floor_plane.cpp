@@ -125,8 +125,9 @@ FloorFit FitFloor(const FloorFitOptions& o, const Calibration& calib, const cv::
   fit.height_m = h;
   fit.inliers = CountInliers(o, points, n, h);
   fit.level_from_cam = LevelFromFloorNormal(n);
-  fit.pitch_deg = std::atan2(n.z(), n.y()) * 180 / M_PI;
-  fit.roll_deg = std::asin(std::clamp(n.x(), -1.0, 1.0)) * 180 / M_PI;
+  const Eigen::Vector2d mount = MountFromFloorNormal(n);
+  fit.pitch_deg = mount.x();
+  fit.roll_deg = mount.y();
   fit.success = true;
   return fit;
 }

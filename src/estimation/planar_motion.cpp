@@ -1,6 +1,7 @@
 #include "rgbdvo/estimation/planar_motion.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace rgbdvo {
@@ -23,6 +24,11 @@ Eigen::Matrix3d LevelFromFloorNormal(const Eigen::Vector3d& normal_in_cam) {
 Eigen::Vector3d FloorNormalFromMount(double pitch_deg, double roll_deg) {
   const double p = pitch_deg * M_PI / 180, r = roll_deg * M_PI / 180;
   return {std::sin(r), std::cos(r) * std::cos(p), std::cos(r) * std::sin(p)};
+}
+
+Eigen::Vector2d MountFromFloorNormal(const Eigen::Vector3d& n) {
+  return {std::atan2(n.z(), n.y()) * 180 / M_PI,
+          std::asin(std::clamp(n.x(), -1.0, 1.0)) * 180 / M_PI};
 }
 
 Rigid3d ProjectPlanar(const Eigen::Matrix3d& level_from_cam, const Rigid3d& prev_from_cur) {

@@ -385,10 +385,9 @@ void Odometry::SetUpMotionModel(const Frame& first) {
                                " has no accelerometer reading; use --floor depth or given");
     const Eigen::Vector3d normal = first.gravity_in_cam->normalized();
     level_from_cam_ = LevelFromFloorNormal(normal);
-    // FloorNormalFromMount's angles: normal = (sin roll, cos roll cos pitch, cos roll sin pitch).
+    const Eigen::Vector2d mount = MountFromFloorNormal(normal);
     brief << ", floor's normal from frame " << first.index << "'s accelerometer reading: pitch "
-          << std::atan2(normal.z(), normal.y()) * 180 / M_PI << " deg, roll "
-          << std::asin(normal.x()) * 180 / M_PI << " deg (|a| " << std::setprecision(2)
+          << mount.x() << " deg, roll " << mount.y() << " deg (|a| " << std::setprecision(2)
           << first.gravity_in_cam->norm() << " m/s^2)";
   } else {
     Rng rng(options_.seed);

@@ -110,5 +110,6 @@ TEST_CASE("FloorNormalFromMount gives the normal whose angles FloorFit reports")
     CHECK(std::atan2(n.z(), n.y()) * 180 / M_PI == Approx(pitch).margin(1e-9));
     CHECK(std::asin(n.x()) * 180 / M_PI == Approx(roll).margin(1e-9));
     CHECK((LevelFromFloorNormal(n) * n - Eigen::Vector3d::UnitY()).norm() < 1e-12);
+    CHECK((MountFromFloorNormal(n) - Eigen::Vector2d(pitch, roll)).norm() < 1e-9);
   }
 }

@@ -29,6 +29,8 @@ Eigen::Matrix3d LevelFromFloorNormal(const Eigen::Vector3d& normal_in_cam);
 // looking down) and roll (positive: the normal leans to the camera's +x), degrees; the angles
 // FloorFit reports: normal = (sin roll, cos roll cos pitch, cos roll sin pitch).
 Eigen::Vector3d FloorNormalFromMount(double pitch_deg, double roll_deg);
+// The inverse, degrees: pitch = atan2(n_z, n_y), roll = asin(n_x), for a unit normal.
+Eigen::Vector2d MountFromFloorNormal(const Eigen::Vector3d& normal_in_cam);  // (pitch, roll)
 
 // The planar motion nearest to prev_from_cur: its turn about the level frame's y (the yaw of
 // its rotation's projection onto such turns) and its translation's x-z part in the level frame.
