@@ -305,7 +305,13 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     if (key_.first_inliers < 0) key_.first_inliers = r.inliers;
     const bool new_keyframe = !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
                                 options_.keyframe_inlier_ratio > 0);
-    Advance(std::move(cur), new_keyframe);
+    // The velocity is what one estimate measured. After frames aligned by depth it is this
+    // estimate's own, over its span from the keyframe: the difference from the last (aligned)
+    // frame's pose would add that frame's error, which this estimate corrects, and the depth
+    // alignment's next frames would carry it along the directions their surfaces leave free.
+    // (Synthetic robot every 3rd frame, seed 42: a 15-inlier estimate correcting two aligned
+    // frames by 5 cm sideways; nine aligned frames then slid 5 cm each, ATE 0.180 -> 0.029 m.)
+    Advance(std::move(cur), new_keyframe, last_.pose_from_features ? last_ : key_);
     CorrectTilt(frame);
     r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
     r.world_from_cam = last_.world_from_cam;
@@ -328,7 +334,8 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
       if (level_from_cam_)
         cur.world_from_cam_6dof =
             last_.world_from_cam_6dof * last_.world_from_cam.inverse() * cur.world_from_cam;
-      Advance(std::move(cur), false);
+      cur.pose_from_features = false;
+      Advance(std::move(cur), false, last_);
       CorrectTilt(frame);
       r.status = FrameStatus::kDepth;
       r.world_from_cam = last_.world_from_cam;
@@ -439,11 +446,11 @@ Velocity Odometry::LastVelocity() const {
                     last_.color_timestamp - before_color_time_);
 }
 
-void Odometry::Advance(Reference cur, bool new_keyframe) {
+void Odometry::Advance(Reference cur, bool new_keyframe, const Reference& measured_from) {
   cur.world_from_cam.linear() = NearestRotation(cur.world_from_cam.linear());
   cur.world_from_cam_6dof.linear() = NearestRotation(cur.world_from_cam_6dof.linear());
-  world_from_before_ = last_.world_from_cam;
-  before_color_time_ = last_.color_timestamp;
+  world_from_before_ = measured_from.world_from_cam;
+  before_color_time_ = measured_from.color_timestamp;
   has_before_ = true;
   if (new_keyframe) key_ = cur;
   last_ = std::move(cur);

@@ -334,6 +334,36 @@ TEST_CASE("A frame's velocity is the motion from the estimated frame before it, 
   CHECK((r2.velocity.translation_per_s - truth.translation_per_s).norm() < 0.1);
 }
 
+TEST_CASE("After frames aligned by depth the velocity is the feature estimate's own") {
+  // Frames 3 and 4 are blurred, so aligned by depth; frame 4's depth image is taken 2 cm to the
+  // side of its colour image, so its pose is 2 cm off. Frame 5's features, matched against the
+  // keyframe (frame 2), put it right: that correction is no motion of the camera, and its
+  // velocity is the true one (the difference from frame 4's pose would be 0.6 m/s off).
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = YawBurstPath(6, 3, 4, 1.0);
+  Rigid3d aside = Rigid3d::Identity();
+  aside.translation() = Eigen::Vector3d(0.02, 0, 0);
+  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  FrameResult r;
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    Frame f = Render(scene, cam, path[i], i);
+    if (i == 3 || i == 4) cv::GaussianBlur(f.bgr, f.bgr, cv::Size(0, 0), 25);
+    if (i == 4) f.depth_m = scene.RenderDepth(cam, path[i] * aside);
+    r = odometry.Process(f);
+    INFO("frame " << i << " " << r.StatusString());
+    REQUIRE(r.status == (i == 0               ? FrameStatus::kFirst
+                         : (i == 3 || i == 4) ? FrameStatus::kDepth
+                                              : FrameStatus::kAccepted));
+    if (i == 4)
+      CHECK((r.world_from_cam.translation() - (path[i] * aside).translation()).norm() < 0.005);
+  }
+  CHECK(RigidNear(r.world_from_cam, path[5], 0.3, 0.005));
+  const Velocity truth = VelocityOf(path[4].inverse() * path[5], 1 / 30.0);
+  CHECK((r.velocity.translation_per_s - truth.translation_per_s).norm() < 0.05);
+  CHECK((r.velocity.rotation_per_s - truth.rotation_per_s).norm() < 0.05);
+}
+
 namespace {
 
 // A robot's camera 0.5 m above the default room's floor (y = 1.5), pitched 20 degrees down and

@@ -123,7 +123,8 @@ struct FrameResult {
   Rigid3d world_from_cam = Rigid3d::Identity();  // at `timestamp`
   // The camera's velocity at this frame, from the last two estimated frames once this one is
   // processed, timed by their colour images: for an estimated frame from the one before to this
-  // one, for a predicted frame the velocity it was predicted with; zero for a held (rejected)
+  // one (after frames aligned by depth, from the keyframe its features were matched against),
+  // for a predicted frame the velocity it was predicted with; zero for a held (rejected)
   // frame and before two frames were estimated.
   // Moves the pose to another time, e.g. the depth image's (MoveAtVelocity).
   Velocity velocity;
@@ -183,8 +184,9 @@ class Odometry {
     Rigid3d world_from_cam = Rigid3d::Identity();
     Rigid3d world_from_cam_6dof = Rigid3d::Identity();  // planar model: the 6-DOF chain
     int frame = -1;
-    double color_timestamp = 0;  // seconds (Frame::color_timestamp)
-    int first_inliers = -1;      // inliers of the first frame matched against it
+    double color_timestamp = 0;      // seconds (Frame::color_timestamp)
+    int first_inliers = -1;          // inliers of the first frame matched against it
+    bool pose_from_features = true;  // else from the depth alignment
   };
   // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided
   // by world_from_cur_pred, with a brute-force retry if that fails verification.
@@ -199,12 +201,13 @@ class Odometry {
   // (throws std::runtime_error when the floor is not found).
   void SetUpMotionModel(const Frame& first);
 
-  // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy.
-  void Advance(Reference cur, bool new_keyframe);
+  // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy. The
+  // velocity is measured from `measured_from` (its pose and time) to cur.
+  void Advance(Reference cur, bool new_keyframe, const Reference& measured_from);
   // With gravity_correction and a reading: turns the last estimated frame, and every pose the
   // next frames are chained from, toward the reading's down (GravityCorrection).
   void CorrectTilt(const Frame& frame);
-  // From the frame before last_ to last_, per second of colour time (zero without both).
+  // From world_from_before_ to last_, per second of colour time (zero without both).
   Velocity LastVelocity() const;
 
   OdometryOptions options_;
@@ -219,7 +222,8 @@ class Odometry {
   bool started_ = false;
   Reference key_;   // what frames are matched against
   Reference last_;  // the last accepted frame (fallback when the keyframe fails)
-  // The accepted frame before last_ (pose and colour time) for the constant-velocity prior.
+  // Where the velocity at last_ was measured from (pose and colour time): the accepted frame
+  // before it, or the keyframe (see Advance); for the constant-velocity prior.
   bool has_before_ = false;
   Rigid3d world_from_before_ = Rigid3d::Identity();
   double before_color_time_ = 0;
