@@ -320,8 +320,20 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   }
   if (options_.depth_fallback && !last_.depth_m.empty()) {
     const Stopwatch t1;
+    // The depth alignment keeps the prediction's translation where no surface constrains it,
+    // and the aligned frames after it carry that velocity on: so it is measured over the
+    // longest span one estimate measured, from the keyframe to the last frame when the last
+    // frame's features were matched against it. (Two estimates against one keyframe differ by
+    // their noise: in a feature-poor view 2 cm a frame with 15-20 inliers. Synthetic robot every
+    // 3rd frame, seed 1: ATE 0.084 -> 0.019 m.)
+    Rigid3d align_pred = world_from_cur_pred;
+    if (last_.pose_from_features && key_.frame != last_.frame &&
+        last_.color_timestamp > key_.color_timestamp)
+      align_pred =
+          PredictConstantVelocity(key_.world_from_cam, key_.color_timestamp, last_.world_from_cam,
+                                  last_.color_timestamp, frame.color_timestamp);
     const DepthAlignResult aligned = depth_aligner_->Align(
-        last_.depth_m, cur.depth_m, last_.world_from_cam.inverse() * world_from_cur_pred);
+        last_.depth_m, cur.depth_m, last_.world_from_cam.inverse() * align_pred);
     r.times.ransac += t1.Seconds();
     if (aligned.success) {
       // The frame becomes the last estimated one; the keyframe stays (its sharp features are

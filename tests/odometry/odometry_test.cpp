@@ -41,7 +41,8 @@ std::vector<Rigid3d> YawBurstPath(int n, int first, int last, double burst_deg) 
 TEST_CASE("A frame against itself gives the identity") {
   const SyntheticScene scene;
   const PinholeCamera cam;
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  const OdometryOptions defaults;
+  Odometry odometry(defaults, CalibFor(cam));
   const Frame f = Render(scene, cam, Rigid3d::Identity(), 0);
   CHECK(odometry.Process(f).status == FrameStatus::kFirst);
   Frame again = f;
@@ -61,7 +62,8 @@ TEST_CASE("Odometry recovers a synthetic camera path") {
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(30, 0.02, 1.5);
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  const OdometryOptions defaults;
+  Odometry odometry(defaults, CalibFor(cam));
   FrameResult last;
   double max_trans = 0, max_rot = 0;
   for (int i = 0; i < static_cast<int>(path.size()); ++i) {
@@ -111,7 +113,8 @@ TEST_CASE("A frame without an estimate is reported at the constant-velocity pred
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(4, 0.02, 1.0);
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  const OdometryOptions defaults;
+  Odometry odometry(defaults, CalibFor(cam));
   odometry.Process(Render(scene, cam, path[0], 0));
   REQUIRE(odometry.Process(Render(scene, cam, path[1], 1)).status == FrameStatus::kAccepted);
   Frame blank = Render(scene, cam, path[2], 2);
@@ -261,7 +264,8 @@ TEST_CASE("A prediction beyond the radius falls back to brute force and gives th
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.5);
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  const OdometryOptions defaults;
+  Odometry odometry(defaults, CalibFor(cam));
   odometry.Process(Render(scene, cam, path[0], 0));
   REQUIRE(odometry.Process(Render(scene, cam, path[1], 1)).fallbacks == 0);
   // Frame 2's colour image claims to come 3 s later: constant velocity extrapolates 90 frame
@@ -316,7 +320,8 @@ TEST_CASE("A frame's velocity is the motion from the estimated frame before it, 
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.0);
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  const OdometryOptions defaults;
+  Odometry odometry(defaults, CalibFor(cam));
   Frame f0 = Render(scene, cam, path[0], 0);
   f0.timestamp = f0.color_timestamp + 0.01;  // the depth image 10 ms later
   const FrameResult r0 = odometry.Process(f0);
@@ -344,7 +349,8 @@ TEST_CASE("After frames aligned by depth the velocity is the feature estimate's 
   const std::vector<Rigid3d> path = YawBurstPath(6, 3, 4, 1.0);
   Rigid3d aside = Rigid3d::Identity();
   aside.translation() = Eigen::Vector3d(0.02, 0, 0);
-  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  const OdometryOptions defaults;
+  Odometry odometry(defaults, CalibFor(cam));
   FrameResult r;
   for (int i = 0; i < static_cast<int>(path.size()); ++i) {
     Frame f = Render(scene, cam, path[i], i);
@@ -362,6 +368,43 @@ TEST_CASE("After frames aligned by depth the velocity is the feature estimate's 
   const Velocity truth = VelocityOf(path[4].inverse() * path[5], 1 / 30.0);
   CHECK((r.velocity.translation_per_s - truth.translation_per_s).norm() < 0.05);
   CHECK((r.velocity.rotation_per_s - truth.rotation_per_s).norm() < 0.05);
+}
+
+TEST_CASE("Aligned frames take the free direction's velocity over the keyframe's span") {
+  // A camera 1.7 m from the robot hall's far wall, pitched down to the floor, sliding 1 cm a
+  // frame along the wall: no surface faces that direction, so the depth alignment takes the
+  // prediction's translation there. Frame 2's colour image is rendered 1 cm further along, so
+  // its feature estimate (against the keyframe, frame 0) is 1 cm off. The velocity from frames
+  // 1 and 2 would be 1 cm a frame off, the one over the keyframe's span half that: the three
+  // aligned frames after it end 1 + 3 x 0.5 = 2.5 cm off, not 1 + 3 x 1 = 4 cm.
+  const SyntheticScene scene = SyntheticScene::RobotHall();
+  const PinholeCamera cam;
+  std::vector<Rigid3d> path;
+  for (int i = 0; i < 6; ++i) {
+    Rigid3d p = Rigid3d::Identity();
+    p.linear() = Eigen::AngleAxisd(-20 * M_PI / 180, Eigen::Vector3d::UnitX()).matrix();
+    p.translation() = Eigen::Vector3d(-1.5 + 0.01 * i, -0.6, 1.8);
+    path.push_back(p);
+  }
+  Rigid3d aside = Rigid3d::Identity();
+  aside.translation() = Eigen::Vector3d(0.01, 0, 0);
+  const OdometryOptions options;
+  Odometry odometry(options, CalibFor(cam));
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    Frame f = Render(scene, cam, path[i], i);
+    if (i == 2) f.bgr = scene.RenderColor(cam, path[i] * aside);
+    if (i >= 3) cv::GaussianBlur(f.bgr, f.bgr, cv::Size(0, 0), 25);
+    const FrameResult r = odometry.Process(f);
+    const Eigen::Vector3d error =
+        r.world_from_cam.translation() - (path[0].inverse() * path[i]).translation();
+    INFO("frame " << i << " " << r.StatusString() << " error " << error.transpose());
+    REQUIRE(r.status == (i == 0  ? FrameStatus::kFirst
+                         : i < 3 ? FrameStatus::kAccepted
+                                 : FrameStatus::kDepth));
+    CHECK(error.tail<2>().norm() < 0.003);  // what the surfaces constrain
+    if (i == 2) CHECK(error.x() == Approx(0.01).margin(0.002));
+    if (i == 5) CHECK(error.x() == Approx(0.025).margin(0.004));
+  }
 }
 
 namespace {
