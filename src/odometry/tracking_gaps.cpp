@@ -27,45 +27,50 @@ std::string Fallback(FrameStatus status) {
   }
 }
 
+std::string Frames(int n) { return std::to_string(n) + (n == 1 ? " frame" : " frames"); }
+
+std::string Seconds(double s) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(2);
+  out << s << " s";
+  return out.str();
+}
+
 }  // namespace
 
 std::optional<std::string> TrackingGaps::Add(const FrameResult& r) {
-  if (!HasFeatureEstimate(r.status)) {
-    if (!open_) {
-      open_ = true;
-      run_frames_ = 0;
-      run_start_time_ = r.timestamp;
-      ++gaps_;
-    }
-    ++run_frames_;
-    last_time_ = r.timestamp;
-    longest_frames_ = std::max(longest_frames_, run_frames_);
-    longest_seconds_ = std::max(longest_seconds_, last_time_ - run_start_time_);
-    if (run_frames_ == 1)
-      return "tracking failed at " + At(r) + ": " + r.reason + "; " + Fallback(r.status);
-    if (r.status == FrameStatus::kLost)
-      return "tracking lost at " + At(r) + " after " + std::to_string(run_frames_) +
-             " frames without a feature estimate: restarting from this frame";
-    return std::nullopt;
+  if (HasFeatureEstimate(r.status)) {
+    const double before = estimate_time_;
+    estimate_time_ = r.timestamp;
+    if (!open_) return std::nullopt;
+    open_ = false;
+    const double seconds = r.timestamp - before;
+    longest_seconds_ = std::max(longest_seconds_, seconds);
+    return "tracking resumed at " + At(r) + " after " + Frames(run_frames_) +
+           " without a feature estimate (" + Seconds(seconds) + " between feature estimates)";
   }
-  if (!open_) return std::nullopt;
-  open_ = false;
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(2);
-  s << "tracking resumed at " << At(r) << " after " << run_frames_ << " frames ("
-    << last_time_ - run_start_time_ << " s) without a feature estimate";
-  return s.str();
+  if (!open_) {
+    open_ = true;
+    run_frames_ = 0;
+    ++gaps_;
+  }
+  ++run_frames_;
+  last_time_ = r.timestamp;
+  longest_frames_ = std::max(longest_frames_, run_frames_);
+  longest_seconds_ = std::max(longest_seconds_, last_time_ - estimate_time_);
+  if (run_frames_ == 1)
+    return "tracking failed at " + At(r) + ": " + r.reason + "; " + Fallback(r.status);
+  if (r.status == FrameStatus::kLost)
+    return "tracking lost at " + At(r) + " after " + Frames(run_frames_) +
+           " without a feature estimate: restarting from this frame";
+  return std::nullopt;
 }
 
 std::optional<std::string> TrackingGaps::Finish() const {
   if (!open_) return std::nullopt;
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(2);
-  s << "the sequence ends in a gap of " << run_frames_ << " frames ("
-    << last_time_ - run_start_time_ << " s) without a feature estimate";
-  return s.str();
+  return "the sequence ends in a gap of " + Frames(run_frames_) + " without a feature estimate (" +
+         Seconds(last_time_ - estimate_time_) + " since the last one)";
 }
 
 }  // namespace rgbdvo

@@ -29,9 +29,11 @@ TEST_CASE("A gap is announced when it starts and when it ends, with its length")
   CHECK_FALSE(gaps.Add(At(4, FrameStatus::kPredicted)));
   const auto end = gaps.Add(At(5, FrameStatus::kRecovered));
   REQUIRE(end);
-  CHECK_THAT(*end, Catch::Contains("resumed at t=100.500 (frame 5) after 3 frames (0.20 s)"));
+  // Frames 1 and 5 are the feature estimates either side: 0.4 s without one.
+  CHECK_THAT(*end, Catch::Contains("resumed at t=100.500 (frame 5) after 3 frames without a "
+                                   "feature estimate (0.40 s between feature estimates)"));
   CHECK(gaps.longest_frames() == 3);
-  CHECK(gaps.longest_seconds() == Approx(0.2));
+  CHECK(gaps.longest_seconds() == Approx(0.4));
   CHECK(gaps.gaps() == 1);
   CHECK_FALSE(gaps.Finish());
 }
@@ -52,5 +54,7 @@ TEST_CASE("The longest of several gaps is kept, a lost frame is announced, an op
   gaps.Add(At(6, FrameStatus::kAccepted));
   gaps.Add(At(7, FrameStatus::kPredicted));
   REQUIRE(gaps.Finish());
-  CHECK_THAT(*gaps.Finish(), Catch::Contains("ends in a gap of 1 frames"));
+  CHECK_THAT(*gaps.Finish(), Catch::Contains("ends in a gap of 1 frame without a feature "
+                                             "estimate (0.10 s since the last one)"));
+  CHECK(gaps.longest_seconds() == Approx(0.4));  // frames 2 and 6 either side of frames 3-5
 }

@@ -13,20 +13,24 @@ class TrackingGaps {
  public:
   // Feeds the next frame's result (in frame order). Returns a one-line warning when a gap starts
   // ("tracking failed at t=... (frame N): reason; reporting predicted poses", or what else
-  // carries the pose) or ends ("tracking resumed at t=... (frame N) after K frames (S s)
-  // without a feature estimate").
+  // carries the pose) or ends ("tracking resumed at t=... (frame N) after K frames without a
+  // feature estimate (S s between feature estimates)").
   std::optional<std::string> Add(const FrameResult& result);
   // A warning for a gap still open at the end of the sequence, if any.
   std::optional<std::string> Finish() const;
 
   int longest_frames() const { return longest_frames_; }
-  double longest_seconds() const { return longest_seconds_; }  // first to last frame of the gap
+  // The longest time between the feature estimates either side of a gap (for a gap at the end,
+  // from the last feature estimate to the last frame): what the fallbacks had to bridge. A
+  // frame's timestamp is its colour image's.
+  double longest_seconds() const { return longest_seconds_; }
   int gaps() const { return gaps_; }
 
  private:
   bool open_ = false;
   int run_frames_ = 0;
-  double run_start_time_ = 0, last_time_ = 0;
+  double estimate_time_ = 0;  // the last frame with a feature estimate
+  double last_time_ = 0;      // the last frame of the open gap
   int longest_frames_ = 0;
   double longest_seconds_ = 0;
   int gaps_ = 0;
