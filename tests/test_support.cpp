@@ -6,9 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <mutex>
+#include <system_error>
+#include <vector>
 
 #include "rgbdvo/util/temp_dir.hpp"
 
@@ -65,8 +69,39 @@ Calibration CalibFor(const PinholeCamera& cam) {
   return c;
 }
 
+namespace {
+
+// Every folder MakeTempDir made in this process, removed when the process exits (kept with
+// RGBDVO_KEEP_TEST_DIRS set, to look at what a test wrote).
+class TempDirRegistry {
+ public:
+  ~TempDirRegistry() {
+    if (std::getenv("RGBDVO_KEEP_TEST_DIRS")) return;
+    for (const std::string& dir : dirs_) {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  }
+  std::string Add(std::string dir) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    dirs_.push_back(dir);
+    return dir;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> dirs_;
+};
+
+TempDirRegistry& TempDirs() {
+  static TempDirRegistry registry;
+  return registry;
+}
+
+}  // namespace
+
 std::string MakeTempDir(const std::string& tag) {
-  return rgbdvo::MakeTempDir("rgbdvo_test_" + tag + "_");
+  return TempDirs().Add(rgbdvo::MakeTempDir("rgbdvo_test_" + tag + "_"));
 }
 
 std::string Slurp(const std::string& path) {

@@ -32,7 +32,8 @@ std::vector<PointPair> SynthesizePairs(std::mt19937& rng, const Rigid3d& prev_fr
 // The calibration of registered depth seen by `cam`: identity mapping, K of the colour camera.
 Calibration CalibFor(const PinholeCamera& cam);
 
-// A fresh empty temporary folder, unique per call.
+// A fresh empty temporary folder, unique per call, removed with its contents when the test
+// process exits (unless RGBDVO_KEEP_TEST_DIRS is set).
 std::string MakeTempDir(const std::string& tag);
 
 // A file's bytes ("" when missing), and its lines without their ends.

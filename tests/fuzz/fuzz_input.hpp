@@ -13,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 
 namespace rgbdvo::fuzz {
 
-// Writes the input to this process's scratch file (in $TMPDIR) and returns its path.
+// Writes the input to this process's scratch file (in $TMPDIR) and returns its path; the file
+// is removed when the process exits normally.
 const std::string& InputFile(const uint8_t* data, size_t size, const char* extension);
 
 }  // namespace rgbdvo::fuzz
