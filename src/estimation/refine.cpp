@@ -111,6 +111,8 @@ void RefineOptions::Check() const {
   if (!(huber_sigmas > 0)) throw std::invalid_argument("RefineOptions.huber_sigmas must be > 0");
   if (!(inlier_sigmas > 0)) throw std::invalid_argument("RefineOptions.inlier_sigmas must be > 0");
   if (max_iterations < 1) throw std::invalid_argument("RefineOptions.max_iterations must be >= 1");
+  if (selection_rounds < 1)
+    throw std::invalid_argument("RefineOptions.selection_rounds must be >= 1");
 }
 
 std::string RefineResult::Brief() const {
@@ -240,6 +242,25 @@ RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<Po
   result.final_cost = cost;
   result.success = true;
   return result;
+}
+
+SelectionRefinement RefineWithInlierSelection(const RefineOptions& o, double f,
+                                              const std::vector<PointPair>& pairs,
+                                              const Rigid3d& start, const DepthPlaneTerm* dense) {
+  SelectionRefinement out;
+  Rigid3d T = start;
+  for (int round = 0; round < o.selection_rounds; ++round) {
+    std::vector<int> selected;
+    for (size_t k = 0; k < pairs.size(); ++k)
+      if (WhitenedError(o, f, pairs[k], T) < o.inlier_sigmas)
+        selected.push_back(static_cast<int>(k));
+    if (selected.size() < 3 || (out.refine && selected == out.inliers)) break;
+    out.inliers = std::move(selected);
+    out.refine = RefineMotion(o, f, pairs, out.inliers, T, dense);
+    out.rounds = round + 1;
+    T = out.refine->prev_from_cur;
+  }
+  return out;
 }
 
 }  // namespace rgbdvo

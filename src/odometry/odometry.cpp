@@ -141,37 +141,35 @@ MotionEstimate Odometry::EstimateFromMatches(const Reference& ref, const Referen
       level_from_cam_ ? EstimatePlanarRansac(options_.ransac, *level_from_cam_, pairs, rng_)
                       : EstimateRigidRansac(options_.ransac, pairs, rng_));
   if (estimate.success && options_.refine_enabled) {
-    // Refine on the RANSAC inliers, measure the frame's noise scale there, re-select inliers by
-    // whitened error at that scale, refine again at that scale.
+    // Refine on the RANSAC inliers, measure the frame's noise scale there, then select inliers
+    // by whitened error at that scale and refine on them until the selection settles.
     const double f = 0.5 * (calib_.fx + calib_.fy);
     const RansacResult& ransac = estimate.ransac;
     const Rigid3d T =
         RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
     const NoiseScale noise = EstimateNoiseScale(options_.refine, f, pairs, ransac.inliers, T);
     const RefineOptions scaled = ScaleNoise(options_.refine, noise);
-    std::vector<int> inliers;
-    for (size_t k = 0; k < pairs.size(); ++k)
-      if (WhitenedError(scaled, f, pairs[k], T) < scaled.inlier_sigmas)
-        inliers.push_back(static_cast<int>(k));
-    if (inliers.size() >= 3) {
-      std::optional<DepthPlaneTerm> dense;
-      if (options_.depth_term_step > 0 && !ref.depth_m.empty() && !cur.depth_points.empty()) {
-        dense.emplace(calib_, depth_rays_, ref.depth_m, ref.depth_from_cam, cur.depth_points,
-                      options_.refine.depth_noise_coeff, options_.lifting.max_depth_jump_ratio);
-        // The features' pixel scale measures the frame's motion blur and rolling shutter; the
-        // depth camera saw the same motion, so its surfaces are trusted no better.
-        dense->ScaleNoise(std::max(EstimateDepthTermScale(*dense, T), noise.pixel));
-      }
-      estimate.refine = RefineMotion(scaled, f, pairs, inliers, T, dense ? &*dense : nullptr);
+    std::optional<DepthPlaneTerm> dense;
+    if (options_.depth_term_step > 0 && !ref.depth_m.empty() && !cur.depth_points.empty()) {
+      dense.emplace(calib_, depth_rays_, ref.depth_m, ref.depth_from_cam, cur.depth_points,
+                    options_.refine.depth_noise_coeff, options_.lifting.max_depth_jump_ratio);
+      // The features' pixel scale measures the frame's motion blur and rolling shutter; the
+      // depth camera saw the same motion, so its surfaces are trusted no better.
+      dense->ScaleNoise(std::max(EstimateDepthTermScale(*dense, T), noise.pixel));
+    }
+    SelectionRefinement selected =
+        RefineWithInlierSelection(scaled, f, pairs, T, dense ? &*dense : nullptr);
+    if (selected.refine) {
+      estimate.refine = selected.refine;
       estimate.prev_from_cur = estimate.refine->prev_from_cur;
       if (scaled.planar_level_from_cam) {
         RefineOptions free = scaled;
         free.planar_level_from_cam.reset();
-        estimate.unconstrained =
-            RefineMotion(free, f, pairs, inliers, estimate.prev_from_cur, dense ? &*dense : nullptr)
-                .prev_from_cur;
+        estimate.unconstrained = RefineMotion(free, f, pairs, selected.inliers,
+                                              estimate.prev_from_cur, dense ? &*dense : nullptr)
+                                     .prev_from_cur;
       }
-      estimate.inliers = std::move(inliers);
+      estimate.inliers = std::move(selected.inliers);
     }
   }
   r->times.ransac += t0.Seconds();

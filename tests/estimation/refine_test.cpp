@@ -168,3 +168,70 @@ TEST_CASE("The planar refinement stays planar and beats the 6-DOF one on planar 
                                                        << std::sqrt(err6 / 50));
   CHECK(err3 < 0.5 * err6);
 }
+
+TEST_CASE("Inlier selection repeated to its fixed point no longer depends on the start") {
+  // 200 pairs at the model's noise and 40 outliers, selected from two starts a few millimetres
+  // and a fraction of a degree off (as two RANSAC hypotheses): one round keeps different
+  // inliers from each, the rounds to the fixed point the same ones and the same motion.
+  std::mt19937 rng(41);
+  const Rigid3d T = RandomRigid(rng, 0.1, 0.05);
+  const RefineOptions o;
+  REQUIRE(o.selection_rounds > 1);
+  auto pairs = NoisyPairs(rng, T, 240, o.pixel_sigma, o.depth_noise_coeff * 4.0);
+  std::uniform_real_distribution<double> offset(0.05, 0.3);
+  for (int i = 200; i < 240; ++i)
+    pairs[i].p_prev += Eigen::Vector3d(offset(rng), -offset(rng), offset(rng));
+  Rigid3d a = T, b = T;
+  a.translation() += Eigen::Vector3d(0.004, 0, 0);
+  b.linear() = Eigen::AngleAxisd(-0.005, Eigen::Vector3d::UnitY()) * b.linear();
+  RefineOptions once = o;
+  once.selection_rounds = 1;
+
+  const SelectionRefinement a1 = RefineWithInlierSelection(once, kFocalPx, pairs, a);
+  const SelectionRefinement b1 = RefineWithInlierSelection(once, kFocalPx, pairs, b);
+  REQUIRE(a1.refine);
+  REQUIRE(b1.refine);
+  CHECK(a1.rounds == 1);
+  CHECK(a1.inliers != b1.inliers);
+
+  const SelectionRefinement ra = RefineWithInlierSelection(o, kFocalPx, pairs, a);
+  const SelectionRefinement rb = RefineWithInlierSelection(o, kFocalPx, pairs, b);
+  REQUIRE(ra.refine);
+  REQUIRE(rb.refine);
+  CHECK(ra.rounds > 1);
+  CHECK(ra.inliers == rb.inliers);
+  // The same motion up to the refinement's own convergence; one round's two motions are not.
+  INFO("one round: " << RotationErrorDeg(a1.refine->prev_from_cur, b1.refine->prev_from_cur)
+                     << " deg, "
+                     << TranslationError(a1.refine->prev_from_cur, b1.refine->prev_from_cur)
+                     << " m apart; to the fixed point: "
+                     << RotationErrorDeg(ra.refine->prev_from_cur, rb.refine->prev_from_cur)
+                     << " deg, "
+                     << TranslationError(ra.refine->prev_from_cur, rb.refine->prev_from_cur)
+                     << " m");
+  CHECK(RigidNear(ra.refine->prev_from_cur, rb.refine->prev_from_cur, 1e-3, 1e-5));
+  CHECK_FALSE(RigidNear(a1.refine->prev_from_cur, b1.refine->prev_from_cur, 1e-3, 1e-5));
+  CHECK(RigidNear(ra.refine->prev_from_cur, T, 0.05, 0.002));
+  CHECK(ra.inliers.size() > 190);
+  CHECK(ra.inliers.back() < 200);  // no outlier: they are the last 40
+  CHECK(ra.inliers.size() > a1.inliers.size());
+
+  // The fixed point: selecting again from its motion keeps the same pairs in one round.
+  const SelectionRefinement again =
+      RefineWithInlierSelection(o, kFocalPx, pairs, ra.refine->prev_from_cur);
+  CHECK(again.rounds == 1);
+  CHECK(again.inliers == ra.inliers);
+}
+
+TEST_CASE("Inlier selection with fewer than 3 pairs refines nothing") {
+  std::mt19937 rng(42);
+  const Rigid3d T = RandomRigid(rng, 0.1, 0.05);
+  const auto pairs = NoisyPairs(rng, T, 2, 1.0, 0.001);
+  const SelectionRefinement r = RefineWithInlierSelection(RefineOptions{}, kFocalPx, pairs, T);
+  CHECK_FALSE(r.refine);
+  CHECK(r.inliers.empty());
+  CHECK(r.rounds == 0);
+  RefineOptions bad;
+  bad.selection_rounds = 0;
+  CHECK_THROWS_AS(bad.Check(), std::invalid_argument);
+}

@@ -21,6 +21,9 @@ struct RefineOptions {
   double huber_sigmas = 2.0;   // Huber threshold on a whitened residual block
   double inlier_sigmas = 4.0;  // a pair is an inlier below this whitened error
   int max_iterations = 10;     // Levenberg-Marquardt iterations
+  // RefineWithInlierSelection: at most this many rounds of selecting the inliers and refining on
+  // them (1: select once).
+  int selection_rounds = 10;
   // Set: the motion is planar in this level frame (planar_motion.hpp) and only its turn about
   // the level y axis and its x-z translation are refined; the initial motion must be planar.
   std::optional<Eigen::Matrix3d> planar_level_from_cam;
@@ -47,6 +50,24 @@ RefineResult RefineMotion(const RefineOptions& options, double focal_px,
                           const std::vector<PointPair>& pairs, const std::vector<int>& indices,
                           const Rigid3d& initial_prev_from_cur,
                           const DepthPlaneTerm* dense = nullptr);
+
+// Inlier selection and refinement alternated from `start` (e.g. a RANSAC motion refined on its
+// inliers): select the pairs whose WhitenedError under the current motion is below
+// inlier_sigmas, refine on them from the current motion, and repeat until the selection repeats
+// (a fixed point: the motion is the refinement of exactly the pairs it accepts) or after
+// selection_rounds rounds. A single round leaves the selection depending on where RANSAC's
+// random hypothesis happened to put `start`; the fixed point does not. Ends early, keeping the
+// previous round, when fewer than 3 pairs would be selected; `inliers` is empty and `refine`
+// unset when even the first selection has fewer than 3.
+struct SelectionRefinement {
+  std::optional<RefineResult> refine;
+  std::vector<int> inliers;  // the pairs `refine` was computed on
+  int rounds = 0;            // selections refined on
+};
+SelectionRefinement RefineWithInlierSelection(const RefineOptions& options, double focal_px,
+                                              const std::vector<PointPair>& pairs,
+                                              const Rigid3d& start,
+                                              const DepthPlaneTerm* dense = nullptr);
 
 // The cost RefineMotion minimises at prev_from_cur (the mean robust cost over the pairs and the
 // dense points) and, if gradient is given, its gradient for a left perturbation
