@@ -1,8 +1,11 @@
 #include "rgbdvo/estimation/refine.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -92,6 +95,17 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
   return n == 0 ? 0 : cost / static_cast<double>(n);
 }
 
+// The planar model's left perturbations, in the camera frame: a turn about the level y axis
+// and translations along the level x and z axes (delta = B * (yaw, x, z)).
+Eigen::Matrix<double, 6, 3> PlanarBasis(const Eigen::Matrix3d& level_from_cam) {
+  const Eigen::Matrix3d cam_from_level = level_from_cam.transpose();
+  Eigen::Matrix<double, 6, 3> basis = Eigen::Matrix<double, 6, 3>::Zero();
+  basis.block<3, 1>(0, 0) = cam_from_level.col(1);
+  basis.block<3, 1>(3, 1) = cam_from_level.col(0);
+  basis.block<3, 1>(3, 2) = cam_from_level.col(2);
+  return basis;
+}
+
 Rigid3d Apply(const Vec6& d, const Rigid3d& T) {
   Rigid3d E = Rigid3d::Identity();
   const double angle = d.head<3>().norm();
@@ -175,6 +189,35 @@ RefineOptions ScaleNoise(RefineOptions o, const NoiseScale& scale) {
   return o;
 }
 
+double TranslationStd(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
+                      const std::vector<int>& idx, const Rigid3d& T) {
+  Mat6 H;
+  Vec6 g;
+  Evaluate(o, f, pairs, idx, nullptr, T, &H, &g);
+  // Each residual sees the noise of both of a pair's observations (twice the model's variance),
+  // and both directions see the same two: a quarter of the summed information is what the
+  // observations hold.
+  H /= 4;
+  // The information of the parameters (rotation first, then translation) and the translation's
+  // part once the rotation is solved for: the Schur complement, whose inverse is the
+  // translation's covariance.
+  Eigen::MatrixXd A = H;
+  int rotations = 3;
+  if (o.planar_level_from_cam) {
+    const Eigen::Matrix<double, 6, 3> B = PlanarBasis(*o.planar_level_from_cam);
+    A = B.transpose() * H * B;
+    rotations = 1;
+  }
+  const int translations = static_cast<int>(A.rows()) - rotations;
+  const Eigen::MatrixXd Arr = A.topLeftCorner(rotations, rotations);
+  const Eigen::MatrixXd Art = A.topRightCorner(rotations, translations);
+  const Eigen::MatrixXd S = A.bottomRightCorner(translations, translations) -
+                            Art.transpose() * Arr.completeOrthogonalDecomposition().solve(Art);
+  const double weakest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S).eigenvalues()(0);
+  if (!(weakest > 0)) return std::numeric_limits<double>::infinity();
+  return 1 / std::sqrt(weakest);
+}
+
 double RefineCost(const RefineOptions& o, double f, const std::vector<PointPair>& pairs,
                   const std::vector<int>& idx, const Rigid3d& T, const DepthPlaneTerm* dense,
                   Vec6* gradient) {
@@ -198,16 +241,8 @@ RefineResult RefineMotion(const RefineOptions& o, double f, const std::vector<Po
   Vec6 g;
   double cost = Evaluate(o, f, pairs, idx, dense, initial, &H, &g);
   result.initial_cost = cost;
-  // The planar model's left perturbations, in the camera frame: a turn about the level y axis
-  // and translations along the level x and z axes (delta = B * (yaw, x, z)).
   std::optional<Eigen::Matrix<double, 6, 3>> basis;
-  if (o.planar_level_from_cam) {
-    const Eigen::Matrix3d cam_from_level = o.planar_level_from_cam->transpose();
-    basis.emplace(Eigen::Matrix<double, 6, 3>::Zero());
-    basis->block<3, 1>(0, 0) = cam_from_level.col(1);
-    basis->block<3, 1>(3, 1) = cam_from_level.col(0);
-    basis->block<3, 1>(3, 2) = cam_from_level.col(2);
-  }
+  if (o.planar_level_from_cam) basis = PlanarBasis(*o.planar_level_from_cam);
   double lambda = 1e-4;
   for (int it = 0; it < o.max_iterations; ++it) {
     result.iterations = it + 1;

@@ -31,6 +31,8 @@ void OdometryOptions::Check() const {
     throw std::invalid_argument("OdometryOptions.max_rejected_run must be >= 0");
   if (depth_term_step < 0)
     throw std::invalid_argument("OdometryOptions.depth_term_step must be >= 0");
+  if (!(depth_term_translation_std_m >= 0))
+    throw std::invalid_argument("OdometryOptions.depth_term_translation_std_m must be >= 0");
   if (motion != "6dof" && motion != "planar")
     throw std::invalid_argument("OdometryOptions.motion must be 6dof or planar, not '" + motion +
                                 "'");
@@ -62,6 +64,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.predict_failed_frames = false;       // a rejected frame keeps the last pose
     o.depth_fallback = false;              // features only
     o.compensate_depth_delay = false;      // depth at the keypoint's own pixel
+    o.depth_term_step = 0;                 // feature residuals only
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");
@@ -150,15 +153,28 @@ MotionEstimate Odometry::EstimateFromMatches(const Reference& ref, const Referen
     const NoiseScale noise = EstimateNoiseScale(options_.refine, f, pairs, ransac.inliers, T);
     const RefineOptions scaled = ScaleNoise(options_.refine, noise);
     std::optional<DepthPlaneTerm> dense;
-    if (options_.depth_term_step > 0 && !ref.depth_m.empty() && !cur.depth_points.empty()) {
+    const auto add_depth_term = [&](const Rigid3d& at) {
       dense.emplace(calib_, depth_rays_, ref.depth_m, ref.depth_from_cam, cur.depth_points,
                     options_.refine.depth_noise_coeff, options_.lifting.max_depth_jump_ratio);
       // The features' pixel scale measures the frame's motion blur and rolling shutter; the
       // depth camera saw the same motion, so its surfaces are trusted no better.
-      dense->ScaleNoise(std::max(EstimateDepthTermScale(*dense, T), noise.pixel));
-    }
+      dense->ScaleNoise(std::max(EstimateDepthTermScale(*dense, at), noise.pixel));
+    };
+    const bool depth_term =
+        options_.depth_term_step > 0 && !ref.depth_m.empty() && !cur.depth_points.empty();
+    if (depth_term && options_.depth_term_translation_std_m == 0) add_depth_term(T);
     SelectionRefinement selected =
         RefineWithInlierSelection(scaled, f, pairs, T, dense ? &*dense : nullptr);
+    if (depth_term && !dense && selected.refine &&
+        !(TranslationStd(options_.refine, f, pairs, selected.inliers,
+                         selected.refine->prev_from_cur) <=
+          options_.depth_term_translation_std_m)) {
+      // The features leave the translation uncertain: the depth surfaces join, from the
+      // features' motion.
+      const Rigid3d from = selected.refine->prev_from_cur;
+      add_depth_term(from);
+      selected = RefineWithInlierSelection(scaled, f, pairs, from, &*dense);
+    }
     if (selected.refine) {
       estimate.refine = selected.refine;
       estimate.prev_from_cur = estimate.refine->prev_from_cur;

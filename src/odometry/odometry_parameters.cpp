@@ -119,9 +119,13 @@ const std::vector<OdometryParameter> kParameters = {
      "prediction)",
      [](O& o) -> ParameterRef { return &o.depth_fallback; }},
     {"depth_term_step", "depth-term-step",
-     "also align the depth surfaces at every N-th pixel in the refinement (e.g. 16; 0 = features "
-     "only)",
+     "align the depth surfaces at every N-th pixel in the refinement where the features leave the "
+     "translation uncertain (0 = features only)",
      [](O& o) -> ParameterRef { return &o.depth_term_step; }},
+    {"depth_term_translation_std_m", "depth-term-std",
+     "the depth surfaces join a frame whose features alone leave the translation less certain "
+     "than this, m (standard deviation along the least certain direction; 0 = every frame)",
+     [](O& o) -> ParameterRef { return &o.depth_term_translation_std_m; }},
     {"predict_failed_frames", "predict",
      "report a frame without an estimate at the constant-velocity prediction (--no-predict: at "
      "the last pose, the paper)",

@@ -52,6 +52,18 @@ const std::string& Recording() {
   return dir;
 }
 
+// The odometry's results on a robot recording with its depth-aware calibration, single-threaded.
+std::vector<FrameResult> RunOnRecording(const std::string& folder, const OdometryOptions& options) {
+  Odometry odometry(options, LoadCalibration(folder + "/calib_depth_aware.yaml"));
+  FakenectSource source(folder, {});
+  std::vector<FrameResult> results;
+  RunOptions run;
+  run.threads = 1;
+  RunOdometry(
+      source, odometry, {}, [&](const FrameResult& r) { results.push_back(r); }, run);
+  return results;
+}
+
 // robot.txt's `key: value` lines.
 std::map<std::string, double> ReadRobotTxt(const std::string& path) {
   std::map<std::string, double> values;
@@ -182,21 +194,14 @@ TEST_CASE("The robot's accelerometer reads gravity and the centripetal accelerat
 }
 
 TEST_CASE("The odometry follows a short robot recording through its first turn") {
-  const Calibration calib = LoadCalibration(Recording() + "/calib_depth_aware.yaml");
   const Trajectory truth = ReadTrajectory(Recording() + "/groundtruth.txt");
-  FakenectSource source(Recording(), {});
-  Odometry odometry(OdometryOptions{}, calib);
+  const OdometryOptions defaults;
   std::vector<StampedPose> estimate;
   int estimated = 0;
-  RunOptions run;
-  run.threads = 1;
-  RunOdometry(
-      source, odometry, {},
-      [&](const FrameResult& r) {
-        estimate.push_back({r.timestamp, r.world_from_cam});
-        estimated += r.status == FrameStatus::kAccepted || r.status == FrameStatus::kFirst;
-      },
-      run);
+  for (const FrameResult& r : RunOnRecording(Recording(), defaults)) {
+    estimate.push_back({r.timestamp, r.world_from_cam});
+    estimated += r.status == FrameStatus::kAccepted || r.status == FrameStatus::kFirst;
+  }
   const AteResult ate = ComputeAte(truth.poses, estimate, {});
   REQUIRE(ate.success);
   const Rigid3d end_truth =
@@ -213,4 +218,31 @@ TEST_CASE("The odometry follows a short robot recording through its first turn")
   CHECK(ate.error_m.rmse < 0.005);
   CHECK(TranslationError(end_truth, end_estimate) < 0.01);
   CHECK(RotationErrorDeg(end_truth, end_estimate) < 0.3);
+}
+
+TEST_CASE("On the robot's feature-poor side the depth surfaces join and pin the slide") {
+  // 60 frames (2 s) along the grey mat, the grey panel ahead: 16-90 inliers, few of them on
+  // the panel, where a turn and a sideways slide look alike. The depth term joins the frames
+  // whose features leave the translation uncertain. Measured: ATE 31.4 mm with features only,
+  // 2.9 mm by default.
+  RobotPathOptions path;
+  path.start_m = 830 / path.frame_rate_hz * path.speed_mps;
+  const std::string folder = MakeTempDir("robot_poor") + "/rec";
+  WriteRobotRecording(folder, path, 60);
+  const Trajectory truth = ReadTrajectory(folder + "/groundtruth.txt");
+  const auto ate_m = [&](int depth_term_step) {
+    OdometryOptions options;
+    options.depth_term_step = depth_term_step;
+    std::vector<StampedPose> estimate;
+    for (const FrameResult& r : RunOnRecording(folder, options))
+      estimate.push_back({r.timestamp, r.world_from_cam});
+    const AteResult ate = ComputeAte(truth.poses, estimate, {});
+    REQUIRE(ate.success);
+    return ate.error_m.rmse;
+  };
+  const OdometryOptions defaults;
+  const double features_only = ate_m(0), with_depth = ate_m(defaults.depth_term_step);
+  INFO("ATE RMSE: features only " << features_only << " m, by default " << with_depth << " m");
+  CHECK(with_depth < 0.5 * features_only);
+  CHECK(with_depth < 0.006);
 }

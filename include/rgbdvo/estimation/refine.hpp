@@ -78,6 +78,17 @@ double RefineCost(const RefineOptions& options, double focal_px,
                   const Rigid3d& prev_from_cur, const DepthPlaneTerm* dense,
                   Eigen::Matrix<double, 6, 1>* gradient);
 
+// How well the pairs named by `indices` pin down the translation at prev_from_cur: the standard
+// deviation (m) of the refined translation along its least certain direction, with the
+// rotation free (the translation block of the inverse Gauss-Newton information of the residuals
+// RefineMotion minimises, with each pair's two observations counted once; in
+// the planar model's 3 parameters when planar_level_from_cam is set). It grows where the
+// matches are few, lie on one plane far away (a turn and a slide look alike) or crowd into one
+// part of the image. Infinite when a direction is not constrained at all.
+double TranslationStd(const RefineOptions& options, double focal_px,
+                      const std::vector<PointPair>& pairs, const std::vector<int>& indices,
+                      const Rigid3d& prev_from_cur);
+
 // Whitened symmetric error of one pair under prev_from_cur (the larger of the two directions,
 // in sigmas): the inlier test that grows with depth.
 double WhitenedError(const RefineOptions& options, double focal_px, const PointPair& pair,

@@ -62,12 +62,20 @@ struct OdometryOptions {
   // where its point lies in the depth image, moved by the predicted velocity over the time
   // difference (LiftKeypointsAcrossTime); false = at the same pixel (the paper).
   bool compensate_depth_delay = true;
-  // > 0: the final refinement also aligns the depth surfaces (DepthPlaneTerm): point-to-plane
-  // residuals of the current depth image's points on a grid of every n-th pixel against the
-  // reference's depth image. Off by default: at every 16th pixel it lowers ATE on fr1/xyz and
-  // fr3/teddy (full rate and thinned) by 10-25 %, but raises fr1/desk's fast turn's rotational
-  // RPE by a fifth, past the dense peers (docs/benchmarks.md). 0 = feature residuals only.
-  int depth_term_step = 0;
+  // The depth surfaces in the refinement (DepthPlaneTerm): point-to-plane residuals of the
+  // current depth image's points on a grid of every n-th pixel against the reference's depth
+  // image, added where the features alone leave the translation uncertain: their TranslationStd
+  // (at the model's noise, so by the matches' number and layout, not the frame's blur) above
+  // depth_term_translation_std_m. Such matches are few, or crowd on one surface far away where a
+  // turn and a slide look alike; the depth surfaces (a floor, a wall) pin what they leave free.
+  // Where the features pin the translation, the depth term adds little and under a fast turn
+  // its surfaces (read by another camera at another time) err more than the model says: added
+  // to every frame it raises fr1/desk's fast turn's rotational RPE by a fifth, past the dense
+  // peers. On the synthetic robot lap the gate at 4 mm lowers ATE 0.0110 -> 0.0083 m, and RPE
+  // 0.0076 -> 0.0033 m/s and 0.178 -> 0.070 deg/s (docs/benchmarks.md). depth_term_step 0 =
+  // features only (the paper); depth_term_translation_std_m 0 = on every frame.
+  int depth_term_step = 16;
+  double depth_term_translation_std_m = 0.004;
   // The motion model: "6dof" (any rigid motion, the paper) or "planar" (issue 16): the camera is
   // rigidly mounted on a robot driving on a flat floor, so each frame's motion is a turn about
   // the floor's normal and a translation along the floor. 3 degrees of freedom instead of 6:
