@@ -5,6 +5,14 @@
 
 namespace rgbdvo {
 
+FeatureOptions FeatureOptions::Lowe() {
+  FeatureOptions o;
+  o.upsample_first_octave = true;
+  o.sigma = 1.6;
+  o.contrast_threshold = 0.04;
+  return o;
+}
+
 void FeatureOptions::Check() const {
   if (implementation != "rgbdvo" && implementation != "opencv")
     throw std::invalid_argument("FeatureOptions.implementation must be rgbdvo or opencv, not '" +

@@ -53,6 +53,7 @@ OdometryOptions PresetOptions(const std::string& name) {
   OdometryOptions o;
   if (name == "default") return o;
   if (name == "paper") {
+    o.features = FeatureOptions::Lowe();   // Lowe's SIFT, as cv::SIFT's defaults
     o.features.implementation = "opencv";  // a reference SIFT (the paper names none)
     o.matching.mutual = false;             // the paper names no matching rule; a plain ratio test
     o.refine_enabled = false;              // SVD on the inliers only (eq. 5-10)

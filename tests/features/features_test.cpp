@@ -26,7 +26,7 @@ double FractionFound(const Features& a, const Features& b, double px) {
 TEST_CASE("OpenCV SIFT on the half image finds the full image's keypoints in image pixels") {
   const SyntheticScene scene;
   const cv::Mat image = scene.RenderColor(PinholeCamera{}, Rigid3d::Identity());
-  FeatureOptions full_options, half_options;
+  FeatureOptions full_options = FeatureOptions::Lowe(), half_options = FeatureOptions::Lowe();
   full_options.implementation = half_options.implementation = "opencv";
   half_options.upsample_first_octave = false;
   const Features full = SiftExtractor(full_options).Extract(image);
@@ -47,7 +47,7 @@ TEST_CASE("OpenCV SIFT on the half image finds the full image's keypoints in ima
 TEST_CASE("rgbdvo SIFT without the upsampled octave keeps the larger keypoints") {
   const SyntheticScene scene;
   const cv::Mat image = scene.RenderColor(PinholeCamera{}, Rigid3d::Identity());
-  FeatureOptions full_options, native_options;
+  FeatureOptions full_options = FeatureOptions::Lowe(), native_options = FeatureOptions::Lowe();
   native_options.upsample_first_octave = false;
   const Features full = SiftExtractor(full_options).Extract(image);
   const Features native = SiftExtractor(native_options).Extract(image);

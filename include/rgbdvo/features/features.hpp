@@ -16,17 +16,26 @@ struct FeatureOptions {
   // "rgbdvo": rgbdvo's own SIFT (sift.hpp: OpenCV's detector and descriptor, about twice as
   // fast); "opencv": cv::SIFT.
   std::string implementation = "rgbdvo";
-  int max_features = 0;              // keep the N strongest, 0 = all (paper: all, 200-1500)
-  int octave_layers = 3;             // SIFT scales per octave (Lowe: 3)
-  double contrast_threshold = 0.04;  // SIFT DoG contrast threshold (Lowe/OpenCV: 0.04)
-  double edge_threshold = 10.0;      // SIFT edge response ratio (Lowe/OpenCV: 10)
-  double sigma = 1.6;                // SIFT base blur (Lowe/OpenCV: 1.6)
+  int max_features = 0;   // keep the N strongest, 0 = all (paper: all, 200-1500)
+  int octave_layers = 3;  // SIFT scales per octave (Lowe: 3)
+  // The scale space starts at the image's own resolution (upsample_first_octave false) with a
+  // base blur of 1 pixel, the finest the pixel grid holds (the camera's own blur is about 0.5),
+  // and a contrast threshold of 0.015 (Lowe's 0.04 counts for the 2x-upsampled image, whose
+  // finest scales this scale space does not have): about as many inliers as Lowe's detector on
+  // the 2x-upsampled image or more, at about half the CPU of a frame (docs/benchmarks.md,
+  // issue 20).
+  // Lowe() is Lowe's (and OpenCV's) detector.
+  double contrast_threshold = 0.015;  // SIFT DoG contrast threshold (Lowe/OpenCV: 0.04)
+  double edge_threshold = 10.0;       // SIFT edge response ratio (Lowe/OpenCV: 10)
+  double sigma = 1.0;                 // SIFT base blur (Lowe/OpenCV: 1.6)
   // true: the first octave is the colour image upsampled 2x (Lowe's "double the image"; 4x the
-  // pixels of the image itself), as OpenCV always does. false: about 4x less work and fewer,
-  // larger-scale features (none below 1.6 image pixels of blur): rgbdvo's SIFT starts at the
-  // image's own resolution; OpenCV's is run on the image halved (area average), so that its
-  // upsampled first octave is back at image resolution, and keypoints are scaled back.
-  bool upsample_first_octave = true;
+  // pixels of the image itself), as OpenCV always does. false: about 4x less work; rgbdvo's
+  // SIFT starts at the image's own resolution; OpenCV's is run on the image halved (area
+  // average), so that its upsampled first octave is back at image resolution, and keypoints are
+  // scaled back.
+  bool upsample_first_octave = false;
+  // Lowe's parameters: the 2x-upsampled first octave, base blur 1.6, contrast 0.04.
+  static FeatureOptions Lowe();
   void Check() const;
   SiftOptions ToSiftOptions() const;  // for implementation "rgbdvo"
 };
