@@ -1,5 +1,6 @@
 #include "rgbdvo/sensor/camera.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
@@ -34,8 +35,24 @@ Eigen::Vector2d Distort(const Calibration& c, const Eigen::Vector2d& x) {
 Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
   Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
   if (!HasDistortion(c)) return distorted;
+  // Newton's method on Distort(x) = distorted from x = distorted: 3-4 steps to a step below
+  // 1e-13 (a billionth of a pixel), where the fixed-point iteration x += distorted - Distort(x)
+  // contracts only by the distortion's slope (about 0.3 in a Kinect image's corners).
+  const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
   Eigen::Vector2d x = distorted;
-  for (int i = 0; i < 20; ++i) x += distorted - Distort(c, x);
+  for (int i = 0; i < 20; ++i) {
+    const double r2 = x.squaredNorm(), radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+    const double slope = 2 * (k1 + r2 * (2 * k2 + 3 * r2 * k3));  // d radial / d x, over x
+    Eigen::Matrix2d J;
+    J << radial + slope * x.x() * x.x() + 2 * p1 * x.y() + 6 * p2 * x.x(),
+        slope * x.x() * x.y() + 2 * p1 * x.x() + 2 * p2 * x.y(),
+        slope * x.x() * x.y() + 2 * p1 * x.x() + 2 * p2 * x.y(),
+        radial + slope * x.y() * x.y() + 6 * p1 * x.y() + 2 * p2 * x.x();
+    const Eigen::Vector2d step = J.inverse() * (distorted - Distort(c, x));
+    if (!step.allFinite()) break;
+    x += step;
+    if (step.squaredNorm() < 1e-26) break;
+  }
   return x;
 }
 

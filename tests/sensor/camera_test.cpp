@@ -98,8 +98,8 @@ TEST_CASE("BackProject removes lens distortion and ProjectIr puts it back") {
       const Eigen::Vector3d X = BackProject(c, {u, v}, 2.0);
       CHECK(X.z() == 2.0);
       const Eigen::Vector2d uv = ProjectIr(c, X);
-      CHECK(uv.x() == Approx(u).margin(1e-6));
-      CHECK(uv.y() == Approx(v).margin(1e-6));
+      CHECK(uv.x() == Approx(u).margin(1e-9));
+      CHECK(uv.y() == Approx(v).margin(1e-9));
     }
   // Off-centre, distortion matters: the undistorted ray differs from the pinhole one by pixels.
   Calibration pinhole = c;
