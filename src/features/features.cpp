@@ -42,7 +42,7 @@ SiftExtractor::SiftExtractor(const FeatureOptions& o) : options_(o) {
   o.Check();
   if (o.implementation == "opencv")
     opencv_ = cv::SIFT::create(o.max_features, o.octave_layers, o.contrast_threshold,
-                               o.edge_threshold, o.sigma);
+                               o.edge_threshold, o.sigma, CV_8U);
   else
     o.ToSiftOptions().Check();
 }

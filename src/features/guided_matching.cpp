@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <opencv2/core/hal/hal.hpp>
 #include <stdexcept>
+
+#include "rgbdvo/features/sift/simd.hpp"
 
 namespace rgbdvo {
 
@@ -15,6 +17,16 @@ void GuidedMatchOptions::Check() const {
 }
 
 namespace {
+
+// Squared L2 distance of two byte descriptors (vectorised: 16-bit differences, 32-bit sums).
+RGBDVO_SIMD_CLONES int DistanceSq(const uint8_t* a, const uint8_t* b, int n) {
+  int sum = 0;
+  for (int k = 0; k < n; ++k) {
+    const int d = a[k] - b[k];
+    sum += d * d;
+  }
+  return sum;
+}
 
 // The current keypoints bucketed in square cells (counting sort, one array per frame): the
 // keypoints of cell c are index[start[c] .. start[c+1]), in ascending order.
@@ -64,9 +76,9 @@ std::vector<cv::DMatch> MatchGuided(const GuidedMatchOptions& o, const Features&
     throw std::invalid_argument("MatchGuided: one prediction per reference keypoint expected");
   std::vector<cv::DMatch> out;
   if (ref.size() == 0 || cur.size() == 0) return out;
-  if (ref.descriptors.type() != CV_32F || cur.descriptors.type() != CV_32F ||
+  if (ref.descriptors.type() != CV_8U || cur.descriptors.type() != CV_8U ||
       ref.descriptors.cols != cur.descriptors.cols)
-    throw std::invalid_argument("MatchGuided: CV_32F descriptors of the same length expected");
+    throw std::invalid_argument("MatchGuided: CV_8U descriptors of the same length expected");
   const int dims = cur.descriptors.cols;
   const double r = o.radius_px, r2 = r * r;
   const Grid grid(cur.keypoints, static_cast<float>(std::clamp(r, 4.0, 1e4)));
@@ -88,7 +100,7 @@ std::vector<cv::DMatch> MatchGuided(const GuidedMatchOptions& o, const Features&
     int cx0, cx1, cy0, cy1;
     Grid::Range(px, r, grid.x0, grid.cell, grid.nx, &cx0, &cx1);
     Grid::Range(py, r, grid.y0, grid.cell, grid.ny, &cy0, &cy1);
-    const float* a = ref.descriptors.ptr<float>(static_cast<int>(i));
+    const uint8_t* a = ref.descriptors.ptr<uint8_t>(static_cast<int>(i));
     Best& b = ref_best[i];
     for (int cy = cy0; cy <= cy1; ++cy)
       for (int cx = cx0; cx <= cx1; ++cx) {
@@ -97,7 +109,8 @@ std::vector<cv::DMatch> MatchGuided(const GuidedMatchOptions& o, const Features&
           const int j = grid.index[k];
           const double dx = cur.keypoints[j].pt.x - px, dy = cur.keypoints[j].pt.y - py;
           if (dx * dx + dy * dy > r2) continue;
-          const float d = cv::hal::normL2Sqr_(a, cur.descriptors.ptr<float>(j), dims);
+          // Exact: a whole number below 2^24 (128 x 255^2), as cv::BFMatcher's distances are.
+          const auto d = static_cast<float>(DistanceSq(a, cur.descriptors.ptr<uint8_t>(j), dims));
           if (d < b.d1 || (d == b.d1 && j < b.j)) {
             b.d2 = b.d1;
             b.d1 = d;

@@ -132,12 +132,12 @@ TEST_CASE("Guided matching compares only candidates within the radius") {
   // Reference keypoint 0 is predicted at (100, 100). Current keypoint 0 (at 8 px) has its
   // descriptor; keypoint 1 (at 30 px) has the same descriptor, which would make brute-force
   // matching ambiguous (ratio test fails); keypoint 2 (at 4 px) is a different descriptor.
-  cv::Mat d_ref = cv::Mat::zeros(1, 128, CV_32F);
-  d_ref.at<float>(0, 0) = 1;
-  cv::Mat d_cur = cv::Mat::zeros(3, 128, CV_32F);
-  d_cur.at<float>(0, 0) = 1;
-  d_cur.at<float>(1, 0) = 1;
-  d_cur.at<float>(2, 1) = 1;
+  cv::Mat d_ref = cv::Mat::zeros(1, 128, CV_8U);
+  d_ref.at<uint8_t>(0, 0) = 1;
+  cv::Mat d_cur = cv::Mat::zeros(3, 128, CV_8U);
+  d_cur.at<uint8_t>(0, 0) = 1;
+  d_cur.at<uint8_t>(1, 0) = 1;
+  d_cur.at<uint8_t>(2, 1) = 1;
   const Features ref = MakeFeatures({{50, 50}}, d_ref);
   const Features cur = MakeFeatures({{108, 100}, {100, 130}, {100, 104}}, d_cur);
   const std::vector<std::optional<Eigen::Vector2d>> predicted = {Eigen::Vector2d(100, 100)};
@@ -163,12 +163,12 @@ TEST_CASE("Guided matching's mutual check looks at the reference keypoints near 
   // Two reference keypoints predicted 10 px apart compete for current keypoint 0; reference
   // keypoint 1 is nearer to it in descriptor space, so with the mutual check keypoint 0 does
   // not take it.
-  cv::Mat d_ref = cv::Mat::zeros(2, 128, CV_32F);
-  d_ref.at<float>(0, 0) = 1;
-  d_ref.at<float>(1, 0) = 0.9f;
-  cv::Mat d_cur = cv::Mat::zeros(2, 128, CV_32F);
-  d_cur.at<float>(0, 0) = 0.9f;
-  d_cur.at<float>(1, 2) = 5;  // far in descriptor space from both
+  cv::Mat d_ref = cv::Mat::zeros(2, 128, CV_8U);
+  d_ref.at<uint8_t>(0, 0) = 10;
+  d_ref.at<uint8_t>(1, 0) = 9;
+  cv::Mat d_cur = cv::Mat::zeros(2, 128, CV_8U);
+  d_cur.at<uint8_t>(0, 0) = 9;
+  d_cur.at<uint8_t>(1, 2) = 50;  // far in descriptor space from both
   const Features ref = MakeFeatures({{0, 0}, {0, 0}}, d_ref);
   const Features cur = MakeFeatures({{100, 100}, {102, 100}}, d_cur);
   const std::vector<std::optional<Eigen::Vector2d>> predicted = {Eigen::Vector2d(95, 100),

@@ -42,7 +42,9 @@ struct FeatureOptions {
 
 struct Features {
   std::vector<cv::KeyPoint> keypoints;  // colour image pixels
-  cv::Mat descriptors;                  // CV_32F, one 128-d row per keypoint
+  // CV_8U, one 128-d row per keypoint: SIFT's entries are whole numbers 0..255, so bytes hold
+  // them exactly and L2 distances between them are exact in any arithmetic.
+  cv::Mat descriptors;
   size_t size() const { return keypoints.size(); }
 };
 

@@ -145,10 +145,10 @@ void Sift::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* key
     keypoints->swap(kept);
     n = options_.max_features;
   }
-  descriptors->create(n, kSiftDescriptorSize, CV_32F);
+  descriptors->create(n, kSiftDescriptorSize, CV_8U);
   for (int r = 0; r < n; ++r)
     std::copy_n(descriptors_.data() + static_cast<size_t>(keep[r]) * kSiftDescriptorSize,
-                kSiftDescriptorSize, descriptors->ptr<float>(r));
+                kSiftDescriptorSize, descriptors->ptr<uint8_t>(r));
 }
 
 void Sift::SearchOctave(const Octave& o, std::vector<cv::KeyPoint>* keypoints) {

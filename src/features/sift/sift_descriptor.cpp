@@ -142,7 +142,7 @@ RGBDVO_SIMD_CLONES float OrientationHistogram(const cv::Mat& level, int x, int y
 }
 
 RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, float sigma,
-                                       float angle_deg, float* out) {
+                                       float angle_deg, uint8_t* out) {
   // The window is centred on the pixel nearest the keypoint, as OpenCV centres it (measured:
   // centring it on the sub-pixel position made the odometry less accurate on fr1/xyz, 5-seed
   // mean RPE 0.0211 against 0.0197 m/s).
@@ -254,7 +254,7 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
   }
   const float scale = kToByte / std::max(std::sqrt(norm), 1e-7f);
   for (int k = 0; k < kSiftDescriptorSize; ++k)
-    out[k] = std::min(255.0f, std::floor(hist[k] * scale + 0.5f));
+    out[k] = static_cast<uint8_t>(std::min(255.0f, std::floor(hist[k] * scale + 0.5f)));
 }
 
 }  // namespace rgbdvo

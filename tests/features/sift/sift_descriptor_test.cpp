@@ -86,7 +86,7 @@ TEST_CASE("SiftDescriptor equals the descriptor computed the plain way, to round
   const int n = 300;
   for (int i = 0; i < n; ++i) {
     const float x = ux(rng), y = uy(rng), sigma = us(rng), angle = ua(rng);
-    float got[kSiftDescriptorSize];
+    uint8_t got[kSiftDescriptorSize];
     SiftDescriptor(level, x, y, sigma, angle, got);
     const std::vector<float> expected = ReferenceDescriptor(level, x, y, sigma, angle);
     double l2 = 0;

@@ -35,7 +35,8 @@ Detected Ours(const cv::Mat& gray, const SiftOptions& options = {}) {
 
 Detected OpenCv(const cv::Mat& gray) {
   Detected d;
-  cv::SIFT::create()->detectAndCompute(gray, cv::noArray(), d.keypoints, d.descriptors);
+  cv::SIFT::create(0, 3, 0.04, 10, 1.6, CV_8U)
+      ->detectAndCompute(gray, cv::noArray(), d.keypoints, d.descriptors);
   return d;
 }
 

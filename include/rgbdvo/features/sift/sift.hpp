@@ -34,7 +34,7 @@ class Sift {
   explicit Sift(const SiftOptions& options);
   // Keypoints in image pixels (cv::KeyPoint: pt, size = 2 x scale sigma, angle in degrees
   // clockwise, response = |DoG| at the extremum / 255, octave packed as OpenCV packs it) and
-  // one CV_32F row of 128 values 0..255 per keypoint. `gray` is CV_8UC1. Not thread-safe: it
+  // one CV_8U row of 128 values per keypoint. `gray` is CV_8UC1. Not thread-safe: it
   // reuses its buffers; use one Sift per thread.
   void DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
                          cv::Mat* descriptors);
@@ -50,7 +50,7 @@ class Sift {
   std::vector<float> row_buffers_;       // running maxima/minima of the extremum search
   std::vector<uint8_t> flags_;           // extremum candidates of one row
   std::unordered_set<int64_t> refined_;  // refined extrema of the octave (layer, y, x)
-  std::vector<float> descriptors_;       // 128 floats per keypoint, before the cv::Mat
+  std::vector<uint8_t> descriptors_;     // 128 bytes per keypoint, before the cv::Mat
 };
 
 }  // namespace rgbdvo

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/core.hpp>
 
 namespace rgbdvo {
@@ -34,12 +35,12 @@ float OrientationHistogram(const cv::Mat& level, int x, int y, int radius, float
 
 // Lowe's descriptor of the keypoint at (x, y) of `level` (centred on the nearest pixel, as
 // OpenCV's), scale `sigma` (both in that level's pixels) and orientation `angle_deg`
-// (cv::KeyPoint::angle: clockwise in the image, OpenCV's convention), as 128 values 0..255
-// (float), laid out as OpenCV's SIFT lays them out. Where OpenCV visits every pixel of the
+// (cv::KeyPoint::angle: clockwise in the image, OpenCV's convention), as 128 bytes 0..255,
+// laid out as OpenCV's SIFT lays them out. Where OpenCV visits every pixel of the
 // rotated window (1200 to 4800 of them), the window is sampled on a regular grid of 4 x 4
 // points per spatial bin (400 in all, gradients interpolated bilinearly): the same histogram
 // at a fraction of the work.
 void SiftDescriptor(const cv::Mat& level, float x, float y, float sigma, float angle_deg,
-                    float* out);
+                    uint8_t* out);
 
 }  // namespace rgbdvo
