@@ -19,6 +19,8 @@ void GuidedMatchOptions::Check() const {
 namespace {
 
 // Squared L2 distance of two byte descriptors (vectorised: 16-bit differences, 32-bit sums).
+// cv::normL2Sqr<uint8_t, int> gives the same sums, but compiled for the baseline CPU only:
+// whole runs took 1.04-1.09 times the CPU with it (fr1_xyz, paired runs).
 RGBDVO_SIMD_CLONES int DistanceSq(const uint8_t* a, const uint8_t* b, int n) {
   int sum = 0;
   for (int k = 0; k < n; ++k) {
