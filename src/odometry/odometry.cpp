@@ -58,6 +58,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.matching.mutual = false;             // the paper names no matching rule; a plain ratio test
     o.refine_enabled = false;              // SVD on the inliers only (eq. 5-10)
     o.keyframe_inlier_ratio = 0;           // successive frames
+    o.fuse_keyframe_pose = false;          // one estimate per frame
     o.ransac.confidence = 0;               // always 200 trials
     o.undistort = false;                   // "a perfect pinhole model was used"
     o.lifting.max_depth_jump_ratio = 0;    // depth at the nearest pixel
@@ -320,6 +321,22 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
     if (key_.first_inliers < 0) key_.first_inliers = r.inliers;
     const bool new_keyframe = !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
                                 options_.keyframe_inlier_ratio > 0);
+    if (new_keyframe && options_.fuse_keyframe_pose && !recovered && last_.frame != key_.frame &&
+        last_.pose_from_features) {
+      // The frame's error will be in every pose after it: measure it again against the last
+      // frame and average the two verified poses, each weighted by its inliers (an estimate's
+      // variance goes as one over its inliers; the last frame's own error is left out). Mean
+      // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md).
+      FrameResult again = r;
+      std::string reason;
+      const MotionEstimate from_last = Estimate(last_, cur, world_from_cur_pred, &again, &reason);
+      r.times = again.times;
+      if (reason.empty()) {
+        const double w = static_cast<double>(r.inliers) / (r.inliers + again.inliers);
+        cur.world_from_cam =
+            WeightedMean(cur.world_from_cam, last_.world_from_cam * from_last.prev_from_cur, w);
+      }
+    }
     // The velocity is what one estimate measured. After frames aligned by depth it is this
     // estimate's own, over its span from the keyframe: the difference from the last (aligned)
     // frame's pose would add that frame's error, which this estimate corrects, and the depth

@@ -104,6 +104,10 @@ const std::vector<OdometryParameter> kParameters = {
     {"keyframe_inlier_ratio", "keyframe-ratio",
      "new keyframe when inliers < ratio * the keyframe's first inliers (0 = every frame)",
      [](O& o) -> ParameterRef { return &o.keyframe_inlier_ratio; }},
+    {"fuse_keyframe_pose", "keyframe-fusion",
+     "a new keyframe's pose also from the last frame, the two averaged by their inliers "
+     "(--no-keyframe-fusion: from the old keyframe alone)",
+     [](O& o) -> ParameterRef { return &o.fuse_keyframe_pose; }},
     {"compensate_depth_delay", "depth-delay",
      "lift keypoints where the depth image saw them, moved over the colour-depth time offset "
      "(--no-depth-delay: at the keypoint's own pixel, the paper)",

@@ -43,6 +43,11 @@ struct OdometryOptions {
   // then grows per keyframe, not per frame). 0 = every accepted frame is the next reference,
   // as in the paper.
   double keyframe_inlier_ratio = 0.7;
+  // A new keyframe's pose is in every pose after it, and its estimate against the old keyframe
+  // is the weakest of that keyframe's life. So it is measured twice: also against the last
+  // frame, and the two verified poses are averaged, weighted by their inliers (rotation along
+  // the geodesic). false = the estimate against the old keyframe alone.
+  bool fuse_keyframe_pose = true;
   // After this many rejected frames in a row the reference is given up: the current frame
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
