@@ -34,13 +34,4 @@ Eigen::Matrix3d AxisAngle(const Eigen::Vector3d& axis, double angle_rad) {
   return Eigen::AngleAxisd(angle_rad, axis.normalized()).toRotationMatrix();
 }
 
-Rigid3d WeightedMean(const Rigid3d& a, const Rigid3d& b, double weight_a) {
-  const Eigen::AngleAxisd b_to_a(b.linear().transpose() * a.linear());
-  Rigid3d mean = Rigid3d::Identity();
-  mean.linear() =
-      b.linear() * Eigen::AngleAxisd(weight_a * b_to_a.angle(), b_to_a.axis()).toRotationMatrix();
-  mean.translation() = weight_a * a.translation() + (1 - weight_a) * b.translation();
-  return mean;
-}
-
 }  // namespace rgbdvo

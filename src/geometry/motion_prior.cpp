@@ -10,6 +10,10 @@ Rigid3d ScaleMotion(const Rigid3d& b_from_a, double s) {
   return out;
 }
 
+Rigid3d WeightedMean(const Rigid3d& a, const Rigid3d& b, double weight_a) {
+  return b * ScaleMotion(b.inverse() * a, weight_a);
+}
+
 Rigid3d PredictConstantVelocity(const Rigid3d& world_from_before, double t_before,
                                 const Rigid3d& world_from_last, double t_last, double t_cur) {
   if (!(t_last > t_before)) return world_from_last;

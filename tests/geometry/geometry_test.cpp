@@ -47,21 +47,3 @@ TEST_CASE("MakeRigid normalises the quaternion and composes as p_b = b_from_a * 
   const Eigen::Vector3d p = (T * turn) * Eigen::Vector3d(1, 0, 0);  // turned first, then moved
   CHECK((p - Eigen::Vector3d(1, 3, 3)).norm() < 1e-12);
 }
-
-TEST_CASE("WeightedMean moves from one pose to the other along the geodesic") {
-  const Rigid3d a = MakeRigid(Eigen::Quaterniond(AxisAngle(Eigen::Vector3d(1, 2, 3), 0.4)),
-                              Eigen::Vector3d(0.3, -0.1, 0.2));
-  const Rigid3d b = MakeRigid(Eigen::Quaterniond(AxisAngle(Eigen::Vector3d(-2, 1, 0.5), 0.9)),
-                              Eigen::Vector3d(-0.1, 0.4, 1.0));
-  const double apart = RotationAngleRad(a.linear().transpose() * b.linear());
-  CHECK(WeightedMean(a, b, 1).isApprox(a, 1e-12));
-  CHECK(WeightedMean(a, b, 0).isApprox(b, 1e-12));
-  for (double w : {0.25, 0.5, 0.8}) {
-    INFO("weight of a " << w);
-    const Rigid3d m = WeightedMean(a, b, w);
-    CHECK(RotationAngleRad(m.linear().transpose() * a.linear()) == Approx((1 - w) * apart));
-    CHECK(RotationAngleRad(m.linear().transpose() * b.linear()) == Approx(w * apart));
-    CHECK(m.translation().isApprox(w * a.translation() + (1 - w) * b.translation(), 1e-12));
-    CHECK(m.linear().isUnitary(1e-12));
-  }
-}

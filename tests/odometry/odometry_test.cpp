@@ -22,6 +22,16 @@ Frame Render(const SyntheticScene& scene, const PinholeCamera& cam, const Rigid3
   return f;
 }
 
+// The frames of a path, numbered and timed from 0.
+std::vector<Frame> RenderPath(const SyntheticScene& scene, const PinholeCamera& cam,
+                              const std::vector<Rigid3d>& path) {
+  std::vector<Frame> frames;
+  frames.reserve(path.size());
+  for (int i = 0; i < static_cast<int>(path.size()); ++i)
+    frames.push_back(Render(scene, cam, path[i], i));
+  return frames;
+}
+
 // n poses turning 1 degree of yaw per frame (and moving 5 mm sideways, 2 mm forward), except
 // frames first..last, which turn burst_deg each.
 std::vector<Rigid3d> YawBurstPath(int n, int first, int last, double burst_deg) {
@@ -89,10 +99,7 @@ TEST_CASE("The depth term keeps a synthetic path as exact as the features alone"
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(15, 0.02, 1.5);
-  std::vector<Frame> frames;
-  frames.reserve(path.size());
-  for (int i = 0; i < static_cast<int>(path.size()); ++i)
-    frames.push_back(Render(scene, cam, path[i], i));
+  const std::vector<Frame> frames = RenderPath(scene, cam, path);
   const auto final_pose = [&](int depth_term_step, double translation_std_m) {
     OdometryOptions options;
     options.depth_term_step = depth_term_step;
@@ -307,10 +314,7 @@ TEST_CASE("A new keyframe's pose is measured against the last frame too") {
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(40, 0.02, 1.5);
-  std::vector<Frame> frames;
-  frames.reserve(path.size());
-  for (int i = 0; i < static_cast<int>(path.size()); ++i)
-    frames.push_back(Render(scene, cam, path[i], i));
+  const std::vector<Frame> frames = RenderPath(scene, cam, path);
   const auto run = [&](bool fuse) {
     OdometryOptions options;
     options.fuse_keyframe_pose = fuse;

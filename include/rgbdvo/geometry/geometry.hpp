@@ -21,9 +21,4 @@ Rigid3d MakeRigid(const Eigen::Quaterniond& q, const Eigen::Vector3d& t);
 // Rotation about `axis` (need not be unit) by `angle_rad`.
 Eigen::Matrix3d AxisAngle(const Eigen::Vector3d& axis, double angle_rad);
 
-// The weighted mean of two poses of one frame: from b toward a by weight_a along the geodesic
-// (the rotation b^-1 a's angle scaled by weight_a about its axis; the translations averaged).
-// weight_a = 1 gives a, 0 gives b.
-Rigid3d WeightedMean(const Rigid3d& a, const Rigid3d& b, double weight_a);
-
 }  // namespace rgbdvo

@@ -10,6 +10,11 @@ namespace rgbdvo {
 // translation times s (first order; s = 1 gives b_from_a, s = 0 the identity).
 Rigid3d ScaleMotion(const Rigid3d& b_from_a, double s);
 
+// The weighted mean of two poses of one frame: b * ScaleMotion(b^-1 * a, weight_a), from b
+// toward a along the geodesic (the rotation interpolated about its axis, the translations
+// averaged). weight_a = 1 gives a, 0 gives b.
+Rigid3d WeightedMean(const Rigid3d& a, const Rigid3d& b, double weight_a);
+
 // world_from_cur predicted at time t_cur by constant velocity in the camera frame:
 // world_from_last * ScaleMotion(before_from_last, (t_cur - t_last) / (t_last - t_before)), with
 // before_from_last = world_from_before^-1 * world_from_last. Without a usable interval
