@@ -287,6 +287,28 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   }
   r.times.lifting += t0.Seconds();
 
+  // A frame with fewer points than a verified motion needs inliers (no depth yet, as in the first
+  // frames of a Kinect stream, a blank wall, a covered lens) cannot be matched by the frames
+  // after it: it never becomes the reference.
+  const bool can_be_reference =
+      std::count_if(cur.points.begin(), cur.points.end(),
+                    [](const auto& p) { return p.has_value(); }) >= options_.verify.min_inliers;
+  // The first reference may also be a frame without such points whose depth image the depth
+  // fallback can align the next frames with (a dark first colour image): readings on at least
+  // half of it, the majority DepthAligner needs to agree.
+  const auto depth_to_align = [&] {
+    if (!options_.depth_fallback || frame.depth_m.empty()) return false;
+    const cv::Mat readings = (frame.depth_m >= calib_.min_depth_m) &
+                             (frame.depth_m <= calib_.max_depth_m) & (frame.depth_m > 0);
+    return 2 * static_cast<size_t>(cv::countNonZero(readings)) >= frame.depth_m.total();
+  };
+  if (!started_ && !can_be_reference && !depth_to_align()) {
+    // No reference yet: reported at the origin, where the first reference will be; the next
+    // frame is tried.
+    r.reason = "reference_points<" + std::to_string(options_.verify.min_inliers);
+    r.status = options_.predict_failed_frames ? FrameStatus::kPredicted : FrameStatus::kRejected;
+    return r;
+  }
   if (!started_) {
     SetUpMotionModel(frame);
     started_ = true;
@@ -391,15 +413,10 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   r.world_from_cam = options_.predict_failed_frames ? world_from_cur_pred : last_.world_from_cam;
   r.world_from_cam.linear() = NearestRotation(r.world_from_cam.linear());
   if (options_.predict_failed_frames) r.velocity = LastVelocity();  // held: no motion
-  // A frame with fewer points than a verified motion needs inliers (a blank wall, a covered
-  // lens) cannot be matched by the frames after it: no restart from it; the next one is tried.
-  const auto can_restart = [&] {
-    return std::count_if(cur.points.begin(), cur.points.end(), [](const auto& p) {
-             return p.has_value();
-           }) >= options_.verify.min_inliers;
-  };
+  // No restart from a frame that cannot be the reference (can_be_reference): the next one is
+  // tried.
   if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run &&
-      can_restart()) {
+      can_be_reference) {
     // The references are out of reach: restart from this frame at the pose just reported.
     cur.world_from_cam = cur.world_from_cam_6dof = r.world_from_cam;
     key_ = last_ = std::move(cur);

@@ -41,24 +41,31 @@ std::string Seconds(double s) {
 
 std::optional<std::string> TrackingGaps::Add(const FrameResult& r) {
   if (HasFeatureEstimate(r.status)) {
-    const double before = estimate_time_;
+    const std::optional<double> before = estimate_time_;
     estimate_time_ = r.timestamp;
     if (!open_) return std::nullopt;
     open_ = false;
-    const double seconds = r.timestamp - before;
+    const double seconds = r.timestamp - *before;
+    const std::string timed =
+        gap_at_start_ ? " since the first frame)" : " between feature estimates)";
+    gap_at_start_ = false;
     longest_seconds_ = std::max(longest_seconds_, seconds);
     return "tracking resumed at " + At(r) + " after " + Frames(run_frames_) +
-           " without a feature estimate (" + Seconds(seconds) + " between feature estimates)";
+           " without a feature estimate (" + Seconds(seconds) + timed;
   }
   if (!open_) {
     open_ = true;
     run_frames_ = 0;
     ++gaps_;
   }
+  if (!estimate_time_) {  // a gap at the start: timed from its first frame
+    estimate_time_ = r.timestamp;
+    gap_at_start_ = true;
+  }
   ++run_frames_;
   last_time_ = r.timestamp;
   longest_frames_ = std::max(longest_frames_, run_frames_);
-  longest_seconds_ = std::max(longest_seconds_, last_time_ - estimate_time_);
+  longest_seconds_ = std::max(longest_seconds_, last_time_ - *estimate_time_);
   if (run_frames_ == 1)
     return "tracking failed at " + At(r) + ": " + r.reason + "; " + Fallback(r.status);
   if (r.status == FrameStatus::kLost)
@@ -70,7 +77,8 @@ std::optional<std::string> TrackingGaps::Add(const FrameResult& r) {
 std::optional<std::string> TrackingGaps::Finish() const {
   if (!open_) return std::nullopt;
   return "the sequence ends in a gap of " + Frames(run_frames_) + " without a feature estimate (" +
-         Seconds(last_time_ - estimate_time_) + " since the last one)";
+         Seconds(last_time_ - *estimate_time_) +
+         (gap_at_start_ ? " since the first frame)" : " since the last one)");
 }
 
 }  // namespace rgbdvo

@@ -202,6 +202,58 @@ TEST_CASE("A burst of fast, blurred rotation is bridged and measured across") {
   }
 }
 
+TEST_CASE("A frame without depth never becomes the reference: the first frame with depth does") {
+  // The first frames of a Kinect stream often come without depth: matched against such a
+  // reference, no later frame could be measured until the odometry restarted.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = YawBurstPath(10, 1, 0, 0);
+  std::vector<Frame> frames = RenderPath(scene, cam, path);
+  for (int i = 0; i < 3; ++i) frames[i].depth_m.setTo(0.0f);
+  for (const bool predict : {true, false}) {
+    OdometryOptions o;
+    o.predict_failed_frames = predict;
+    Odometry odometry(o, CalibFor(cam));
+    for (size_t i = 0; i < frames.size(); ++i) {
+      const FrameResult r = odometry.Process(frames[i]);
+      INFO("frame " << i << " " << r.StatusString());
+      if (i < 3) {
+        CHECK(r.status == (predict ? FrameStatus::kPredicted : FrameStatus::kRejected));
+        CHECK(r.reason == "reference_points<15");
+        CHECK(RigidNear(r.world_from_cam, Rigid3d::Identity(), 1e-9, 1e-12));
+      } else if (i == 3) {
+        CHECK(r.status == FrameStatus::kFirst);
+        CHECK(RigidNear(r.world_from_cam, Rigid3d::Identity(), 1e-9, 1e-12));
+      } else {
+        // Measured from frame 3, the origin now.
+        CHECK(r.status == FrameStatus::kAccepted);
+        CHECK(RigidNear(r.world_from_cam, path[3].inverse() * path[i], 0.05, 0.002));
+      }
+    }
+  }
+}
+
+TEST_CASE("A first frame without keypoints but with depth is the reference the depth aligns with") {
+  // A dark first colour image (a Kinect's exposure settling): the depth fallback measures the
+  // next frames against its depth, as before the first frame with keypoints.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = YawBurstPath(6, 1, 0, 0);
+  std::vector<Frame> frames = RenderPath(scene, cam, path);
+  frames[0].bgr.setTo(cv::Scalar::all(0));
+  Odometry odometry(OdometryOptions{}, CalibFor(cam));
+  std::vector<FrameStatus> statuses;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const FrameResult r = odometry.Process(frames[i]);
+    INFO("frame " << i << " " << r.StatusString());
+    statuses.push_back(r.status);
+    if (i == 0) CHECK(r.status == FrameStatus::kFirst);
+    CHECK(HasEstimate(r.status));
+    CHECK(RigidNear(r.world_from_cam, path[i], 0.3, 0.01));
+  }
+  CHECK(statuses[1] == FrameStatus::kDepth);
+}
+
 TEST_CASE("After max_rejected_run rejections the odometry restarts and says lost") {
   // The frames after the first show another world (another texture, the same depth): features,
   // but none that match. With depth_fallback off nothing else can carry them.

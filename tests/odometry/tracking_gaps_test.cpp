@@ -58,3 +58,27 @@ TEST_CASE("The longest of several gaps is kept, a lost frame is announced, an op
                                              "estimate (0.10 s since the last one)"));
   CHECK(gaps.longest_seconds() == Approx(0.4));  // frames 2 and 6 either side of frames 3-5
 }
+
+TEST_CASE("A gap the sequence begins with is timed from the first frame") {
+  TrackingGaps gaps;
+  const auto start = gaps.Add(At(0, FrameStatus::kPredicted));
+  REQUIRE(start);
+  CHECK_THAT(*start, Catch::Contains("tracking failed at t=100.000 (frame 0)"));
+  gaps.Add(At(1, FrameStatus::kPredicted));
+  const auto end = gaps.Add(At(2, FrameStatus::kFirst));
+  REQUIRE(end);
+  CHECK_THAT(*end, Catch::Contains("after 2 frames without a feature estimate (0.20 s since the "
+                                   "first frame)"));
+  CHECK(gaps.longest_seconds() == Approx(0.2));
+  // Later gaps are timed between feature estimates again.
+  gaps.Add(At(3, FrameStatus::kPredicted));
+  CHECK_THAT(gaps.Add(At(4, FrameStatus::kAccepted)).value(),
+             Catch::Contains("(0.20 s between feature estimates)"));
+  // A sequence without any feature estimate: its one gap, from the first frame.
+  TrackingGaps none;
+  none.Add(At(0, FrameStatus::kPredicted));
+  none.Add(At(3, FrameStatus::kPredicted));
+  REQUIRE(none.Finish());
+  CHECK_THAT(*none.Finish(), Catch::Contains("(0.30 s since the first frame)"));
+  CHECK(none.longest_seconds() == Approx(0.3));
+}

@@ -113,10 +113,12 @@ struct OdometryOptions {
 // pinhole model). Throws std::invalid_argument for another name.
 OdometryOptions PresetOptions(const std::string& name);
 
-// kAccepted: estimated against the keyframe. kRecovered: the keyframe failed, estimated against
-// the last accepted frame. kDepth: the features failed, the depth images aligned by ICP.
-// kPredicted / kRejected: no estimate, reported at the prediction / at the last accepted pose
-// (predict_failed_frames). kLost: the references were given up here.
+// kFirst: the first reference, the origin (the first frame with at least verify.min_inliers 3D
+// points; the frames before it are kPredicted / kRejected at the origin, reason
+// "reference_points<N"). kAccepted: estimated against the keyframe. kRecovered: the keyframe
+// failed, estimated against the last accepted frame. kDepth: the features failed, the depth
+// images aligned by ICP. kPredicted / kRejected: no estimate, reported at the prediction / at the
+// last accepted pose (predict_failed_frames). kLost: the references were given up here.
 enum class FrameStatus { kFirst, kAccepted, kRecovered, kDepth, kPredicted, kRejected, kLost };
 
 // True for the statuses whose pose comes from matched features (or the first frame).
