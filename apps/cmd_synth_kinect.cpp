@@ -46,8 +46,8 @@ void AddSynthKinectCommand(CLI::App& app) {
       WriteRobotRecording(args->folder, path, n, args->seed);
       std::cout << "wrote " << n << " frames (" << n / static_cast<double>(path.LapFrames())
                 << " laps of " << path.LapLength() << " m) to " << args->folder
-                << " (calibration: calib.yaml and calib_depth_aware.yaml; IR camera ground "
-                   "truth: groundtruth.txt; the floor under it: robot.txt)"
+                << " (calibration: calib.yaml and calib_depth_aware.yaml; colour camera ground "
+                   "truth: groundtruth.txt; the floor under the IR camera: robot.txt)"
                 << std::endl;
       return;
     }
@@ -56,7 +56,7 @@ void AddSynthKinectCommand(CLI::App& app) {
                                   MakeKinectRangePath(args->frames));
     std::cout << "wrote " << args->frames << " frames to " << args->folder
               << " (calibration: calib.yaml, eq. 1 exact at 2.5 m, and calib_depth_aware.yaml;"
-                 " IR camera ground truth: groundtruth.txt)"
+                 " colour camera ground truth: groundtruth.txt)"
               << std::endl;
   });
 }

@@ -12,6 +12,7 @@
 #include "rgbdvo/geometry/motion_prior.hpp"
 #include "rgbdvo/odometry/odometry_parameters.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
+#include "rgbdvo/sensor/camera.hpp"
 #include "rgbdvo/util/stopwatch.hpp"
 
 namespace rgbdvo {
@@ -238,6 +239,22 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
 }
 
 FrameResult Odometry::Process(const Frame& frame, Features features) {
+  FrameResult r = Track(frame, std::move(features));
+  // ir_from_color = (I, c): colour0_from_colourk = ir_from_color^-1 * ir0_from_irk * ir_from_color.
+  const Eigen::Vector3d c = ColorCenterInIr(calib_);
+  if (c.isZero()) return r;
+  Rigid3d ir_from_color = Rigid3d::Identity();
+  ir_from_color.translation() = c;
+  const Rigid3d color_from_ir = ir_from_color.inverse();
+  r.world_from_cam = color_from_ir * r.world_from_cam * ir_from_color;
+  if (r.world_from_cam_6dof)
+    r.world_from_cam_6dof = color_from_ir * *r.world_from_cam_6dof * ir_from_color;
+  // A turn moves the colour camera's centre too: v + w x c.
+  r.velocity.translation_per_s += r.velocity.rotation_per_s.cross(c);
+  return r;
+}
+
+FrameResult Odometry::Track(const Frame& frame, Features features) {
   FrameResult r;
   r.frame = frame.index;
   // The pose is the camera's at the colour image's time: the keypoints are seen then, and their

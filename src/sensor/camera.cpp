@@ -32,6 +32,10 @@ Eigen::Vector2d Distort(const Calibration& c, const Eigen::Vector2d& x) {
 
 }  // namespace
 
+Eigen::Vector3d ColorCenterInIr(const Calibration& c) {
+  return Eigen::Vector3d(c.s_u / c.fx, c.s_v / c.fy, 0);
+}
+
 Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
   Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
   if (!HasDistortion(c)) return distorted;

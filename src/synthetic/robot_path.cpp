@@ -104,7 +104,7 @@ SyntheticKinectOptions RobotKinectOptions(uint32_t seed) {
 std::vector<Rigid3d> WriteRobotRecording(const std::string& folder, const RobotPathOptions& path,
                                          int n, uint32_t seed) {
   const SyntheticKinectOptions kinect = RobotKinectOptions(seed);
-  std::vector<Rigid3d> ir_poses = WriteSyntheticKinectRecording(
+  std::vector<Rigid3d> poses = WriteSyntheticKinectRecording(
       folder, SyntheticScene::RobotHall(seed), kinect, MakeRobotPath(path, n));
   const RobotFloorTruth t = RobotIrFloorTruth(path, kinect);
   std::ofstream out(fs::path(folder) / "robot.txt");
@@ -125,7 +125,7 @@ std::vector<Rigid3d> WriteRobotRecording(const std::string& folder, const RobotP
       << "frames: " << n << "\n"
       << "seed: " << seed << "\n";
   if (!out.flush()) throw std::runtime_error(folder + "/robot.txt: cannot write");
-  return ir_poses;
+  return poses;
 }
 
 }  // namespace rgbdvo

@@ -77,11 +77,12 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
   color_from_ir.translation() = o.ir_in_color;
   std::ofstream gt(fs::path(folder) / "groundtruth.txt");
   if (!gt) throw std::runtime_error(folder + "/groundtruth.txt: cannot create");
-  gt << "# IR camera poses relative to the first (TUM format; the odometry measures the IR "
-        "camera)\n# timestamp tx ty tz qx qy qz qw\n"
+  gt << "# colour camera poses relative to the first (TUM format; rgbdvo's poses are the colour "
+        "camera's)\n# timestamp tx ty tz qx qy qz qw\n"
      << std::fixed;
-  std::vector<Rigid3d> ir_poses;
-  Rigid3d ir0_from_world = Rigid3d::Identity();
+  std::vector<Rigid3d> color_poses;
+  const Rigid3d color0_from_world =
+      world_from_color.empty() ? Rigid3d::Identity() : world_from_color.front().inverse();
   cv::RNG noise(o.noise_seed);
   const size_t n = world_from_color.size();
   const double dt = static_cast<double>(o.period_us) * 1e-6;
@@ -89,7 +90,6 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
     const int64_t t = o.start_us + static_cast<int64_t>(k) * o.period_us;
     const uint32_t ts = static_cast<uint32_t>(500 + 2000000 * k);
     const Rigid3d world_from_ir = world_from_color[k] * color_from_ir;
-    if (k == 0) ir0_from_world = world_from_ir.inverse();
     cv::Mat rgb;
     cv::cvtColor(scene.RenderColor(o.color, world_from_color[k]), rgb, cv::COLOR_BGR2RGB);
     recorder.AddColor(t, ts, rgb.ptr<uint8_t>(), rgb.cols, rgb.rows);
@@ -120,15 +120,15 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
     const cv::Mat raw = KinectRawFromDepth(depth);
     recorder.AddDepth(t + 1000, ts + 1000, raw.ptr<uint16_t>(), raw.cols, raw.rows);
 
-    const Rigid3d ir0_from_irk = ir0_from_world * world_from_ir;
-    ir_poses.push_back(ir0_from_irk);
-    WriteTumLine(gt, static_cast<double>(t + 1000) * 1e-6, ir0_from_irk);
+    const Rigid3d color0_from_colork = color0_from_world * world_from_color[k];
+    color_poses.push_back(color0_from_colork);
+    WriteTumLine(gt, static_cast<double>(t + 1000) * 1e-6, color0_from_colork);
   }
   if (!gt.flush()) throw std::runtime_error(folder + "/groundtruth.txt: write failed");
   SaveCalibration(calib, (fs::path(folder) / "calib.yaml").string());
   SaveCalibration(SyntheticKinectCalibration(o, true),
                   (fs::path(folder) / "calib_depth_aware.yaml").string());
-  return ir_poses;
+  return color_poses;
 }
 
 }  // namespace rgbdvo

@@ -175,3 +175,16 @@ TEST_CASE("FindIrPixel takes the nearest surface on the colour ray that the IR c
   c.s_u = 0;
   CHECK(FindIrPixel(c, depth, {330, 200})->x() == 330);
 }
+
+TEST_CASE("ColorCenterInIr is the disparity term's baseline, zero without it") {
+  Calibration c = PaperLike();
+  CHECK(ColorCenterInIr(c).isZero());  // eq. 1 alone: one centre
+  c.fx = 585;
+  c.fy = 580;
+  c.s_u = -585 * 0.025;  // the IR camera 2.5 cm to the colour camera's right (+x)
+  c.s_v = 580 * 0.01;    // and 1 cm above it (-y)
+  const Eigen::Vector3d centre = ColorCenterInIr(c);
+  CHECK(centre.x() == Approx(-0.025));
+  CHECK(centre.y() == Approx(0.01));
+  CHECK(centre.z() == 0);
+}

@@ -135,9 +135,13 @@ struct FrameResult {
   int frame = 0;
   double timestamp = 0;        // seconds: the colour image's time (Frame::color_timestamp)
   double depth_timestamp = 0;  // seconds: the paired depth image's time (Frame::timestamp)
-  Rigid3d world_from_cam = Rigid3d::Identity();  // at `timestamp`
-  // The camera's velocity at this frame, from the last two estimated frames once this one is
-  // processed, timed by their colour images: for an estimated frame from the one before to this
+  // The colour camera's pose at `timestamp`, in the first reference's colour camera frame: the
+  // IR camera's (whose frame the 3D points are in) moved by ColorCenterInIr. The two differ
+  // where the calibration has a disparity term (unregistered depth); registered depth and eq. 1
+  // alone take them as one.
+  Rigid3d world_from_cam = Rigid3d::Identity();
+  // The (colour) camera's velocity at this frame, from the last two estimated frames once this one
+  // is processed, timed by their colour images: for an estimated frame from the one before to this
   // one (after frames aligned by depth, from the keyframe its features were matched against),
   // for a predicted frame the velocity it was predicted with; zero for a held (rejected)
   // frame and before two frames were estimated.
@@ -190,6 +194,10 @@ class Odometry {
   std::string GravityBrief() const;
 
  private:
+  // Process in the IR camera's frame, where the tracking works: poses and velocity of the IR
+  // camera. Process moves them to the colour camera.
+  FrameResult Track(const Frame& frame, Features features);
+
   struct Reference {
     Features features;
     KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once

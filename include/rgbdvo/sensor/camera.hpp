@@ -24,6 +24,12 @@ Eigen::Vector2d ColorToIr(const Calibration& calib, const Eigen::Vector2d& uv_vi
 Eigen::Vector2d IrToColor(const Calibration& calib, const Eigen::Vector2d& uv_ir,
                           double z_m = kInfiniteDepth);
 
+// The colour camera's centre in the IR camera's frame, as the calibration places it:
+// (s_u / fx, s_v / fy, 0), the disparity term's baseline (s_u = -fx o_x for an IR camera at o in
+// the colour camera's frame, axes parallel as eq. 1 takes them). Zero without the term: eq. 1
+// alone has no baseline and takes the two centres as one.
+Eigen::Vector3d ColorCenterInIr(const Calibration& calib);
+
 // The undistorted normalised coordinates (x, y) = K_ir^-1 [u, v, 1] of IR pixel uv_ir, with
 // dist_ir removed (fixed-point inversion of OpenCV's model, as cv::undistortPoints does).
 Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_ir);

@@ -60,7 +60,7 @@ SyntheticKinectOptions RobotKinectOptions(uint32_t seed);
 
 // Writes a robot recording of n frames (WriteSyntheticKinectRecording over MakeRobotPath in
 // SyntheticScene::RobotHall(seed), with RobotKinectOptions(seed)) and robot.txt: the path's
-// constants and RobotIrFloorTruth as YAML `key: value` lines. Returns the IR poses.
+// constants and RobotIrFloorTruth as YAML `key: value` lines. Returns the colour camera poses.
 std::vector<Rigid3d> WriteRobotRecording(const std::string& folder, const RobotPathOptions& path,
                                          int n, uint32_t seed = 7);
 

@@ -59,8 +59,8 @@ std::vector<Rigid3d> MakeKinectRangePath(int n);
 // d- entry per pose of `world_from_color` (colour at t_k, accelerometer at t_k + 0.3 ms, depth
 // at t_k + 1 ms, t_k = start + k * period), plus calib.yaml (the calibration above) and
 // calib_depth_aware.yaml (the exact depth-aware one) and groundtruth.txt (TUM format: depth
-// timestamp and the IR camera's pose relative to its first pose; the odometry measures the IR
-// camera, whose frame its 3D points are in). Returns those IR poses (ir0_from_irk).
+// timestamp and the colour camera's pose relative to its first pose, as rgbdvo reports poses).
+// Returns those poses (color0_from_colork).
 std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
                                                    const SyntheticScene& scene,
                                                    const SyntheticKinectOptions& options,
