@@ -122,6 +122,10 @@ const std::vector<OdometryParameter> kParameters = {
      "when features fail, align the depth images by ICP (--no-depth-fallback: report the "
      "prediction)",
      [](O& o) -> ParameterRef { return &o.depth_fallback; }},
+    {"depth_keyframe", "depth-keyframe",
+     "align a run of frames without a feature estimate with a depth keyframe while it holds "
+     "(--no-depth-keyframe: each with the frame before)",
+     [](O& o) -> ParameterRef { return &o.depth_keyframe; }},
     {"depth_term_step", "depth-term-step",
      "align the depth surfaces at every N-th pixel in the refinement where the features leave the "
      "translation uncertain (0 = features only)",
