@@ -156,10 +156,16 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
   std::vector<size_t> idat_size;
   size_t idat_total = 0;
   bool idat_ended = false, iend = false;
+  const auto truncated = [] {
+    PngDecodeResult r = Fail("truncated chunk");
+    r.truncated = true;
+    return r;
+  };
   for (size_t pos = 8; !iend;) {
-    if (bytes.size() - pos < 12) return Fail("truncated chunk");
+    if (bytes.size() - pos < 12) return truncated();
     const uint32_t len = BigEndian32(&bytes[pos]);
-    if (len > 0x7fffffffu || bytes.size() - pos - 12 < len) return Fail("truncated chunk");
+    if (len > 0x7fffffffu) return Fail("chunk length out of range");
+    if (bytes.size() - pos - 12 < len) return truncated();
     const uint8_t* type = &bytes[pos + 4];
     const uint8_t* data = type + 4;
     if (libdeflate_crc32(0, type, len + 4) != BigEndian32(data + len))
@@ -309,6 +315,7 @@ cv::Mat ReadImage(const std::string& path, int imread_flags) {
   }
   PngDecodeResult r = DecodePng(bytes, imread_flags);
   if (r.too_large) throw std::runtime_error(path + ": " + r.reason);
+  if (r.truncated) return cv::Mat();
   if (const auto size = JpegSize(bytes);
       size && (size->first > kMaxImageSide || size->second > kMaxImageSide))
     throw std::runtime_error(path + ": JPEG header claims " + std::to_string(size->first) + "x" +

@@ -157,7 +157,7 @@ TEST_CASE("DecodePng undoes all five PNG filter types for 1-, 2-, 3- and 4-byte 
   }
 }
 
-TEST_CASE("DecodePng leaves truncated and corrupt PNGs to cv::imread") {
+TEST_CASE("DecodePng leaves corrupt PNGs to cv::imread and refuses truncated ones itself") {
   std::mt19937 rng(3);
   const std::string dir = test::MakeTempDir("png_corrupt");
   const std::string path = dir + "/c.png";
@@ -168,14 +168,19 @@ TEST_CASE("DecodePng leaves truncated and corrupt PNGs to cv::imread") {
   for (const size_t keep : {size_t{0}, size_t{8}, size_t{40}, good.size() / 2, good.size() - 1}) {
     INFO("truncated to " << keep << " bytes");
     const std::vector<uint8_t> cut(good.begin(), good.begin() + keep);
-    CHECK_FALSE(DecodePng(cut, cv::IMREAD_COLOR).success);
+    const PngDecodeResult r = DecodePng(cut, cv::IMREAD_COLOR);
+    CHECK_FALSE(r.success);
+    CHECK(r.truncated == (keep >= 8));  // a PNG signature, then the file ends inside a chunk
     WriteBytes(path, cut);
-    CHECK(Identical(ReadImage(path, cv::IMREAD_COLOR), cv::imread(path, cv::IMREAD_COLOR)));
+    // No image, as cv::imread gives none (it prints libpng's "Read Error" for a cut PNG too).
+    CHECK(ReadImage(path, cv::IMREAD_COLOR).empty());
+    CHECK(cv::imread(path, cv::IMREAD_COLOR).empty());
   }
   std::vector<uint8_t> flipped = good;
   flipped[good.size() / 2] ^= 0x10;  // inside IDAT: the chunk CRC no longer matches
   const PngDecodeResult r = DecodePng(flipped, cv::IMREAD_COLOR);
   CHECK_FALSE(r.success);
+  CHECK_FALSE(r.truncated);
   CHECK(r.reason == "chunk CRC mismatch");
   CHECK_FALSE(DecodePng(good, cv::IMREAD_GRAYSCALE).success);
   CHECK(ReadImage(dir + "/missing.png", cv::IMREAD_COLOR).empty());

@@ -2,7 +2,8 @@
 // PNG decoding on libdeflate for the kinds of PNG the TUM RGB-D benchmark stores (8-bit RGB
 // colour, 16-bit grey depth), 1.6-1.9x as fast as cv::imread (libpng + zlib). Inflate is
 // libdeflate's; chunk parsing, CRCs, unfiltering (PNG spec 1.2 section 6) and the sample order
-// are ours. Anything else goes to cv::imread, so the result is always cv::imread's.
+// are ours. Anything else goes to cv::imread, so the result is always cv::imread's (a PNG cut
+// short gives no image, as there, without OpenCV's libpng printing a line of its own).
 
 #include <cstdint>
 #include <opencv2/core.hpp>
@@ -23,8 +24,11 @@ constexpr long kMaxImageFileBytes = 4096L * 4096 * 8 + (1L << 20);
 struct PngDecodeResult {
   bool success = false;    // false: not decoded here (`reason`); cv::imread decides
   bool too_large = false;  // the header claims more than kMaxImageSide: not for cv::imread either
-  std::string reason;      // why not, e.g. "interlaced", "IDAT CRC mismatch"
-  cv::Mat image;           // on success: what cv::imread(path, flags) returns
+  // The file ends inside a chunk (a copy or a recording cut short): no image, as cv::imread finds
+  // too, which would also print libpng's "Read Error" line.
+  bool truncated = false;
+  std::string reason;  // why not, e.g. "interlaced", "IDAT CRC mismatch"
+  cv::Mat image;       // on success: what cv::imread(path, flags) returns
 };
 
 // Decodes the bytes of a PNG file as cv::imread(path, flags) would for flags cv::IMREAD_COLOR
@@ -40,7 +44,8 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags);
 std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>& bytes);
 
 // cv::imread(path, flags) with DecodePng for the PNGs it handles: the same image, empty when the
-// file is missing, corrupt or truncated (then cv::imread itself has had the last word). Throws
+// file is missing, corrupt or truncated (a PNG cut short is not passed on to cv::imread, which
+// would print a line of its own; other corrupt files are, and it has the last word). Throws
 // std::runtime_error naming the file and the limit for a file above kMaxImageFileBytes or a PNG
 // or JPEG claiming more than kMaxImageSide pixels a side (other formats: OpenCV's own limit).
 cv::Mat ReadImage(const std::string& path, int imread_flags);
