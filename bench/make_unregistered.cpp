@@ -44,6 +44,10 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     const rgbdvo::Calibration colour = rgbdvo::LoadCalibration(calib_path);
     if (fy_ir <= 0) fy_ir = f_ir;
+    for (const char* dir : {"rgb", "depth"})
+      if (!fs::is_directory(fs::path(folder) / dir))
+        throw std::runtime_error(folder + ": no " + dir +
+                                 "/ folder (a TUM RGB-D folder is needed)");
     fs::create_directories(fs::path(out) / "depth");
     for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt"})
       if (fs::exists(fs::path(folder) / name))
