@@ -524,7 +524,8 @@ void Odometry::CorrectTilt(const Frame& frame) {
   const Eigen::Vector3d gravity =
       *frame.gravity_in_cam + v.rotation_per_s.cross(v.translation_per_s);
   const Rigid3d correction = gravity_->Update(last_.world_from_cam, gravity, frame.color_timestamp);
-  for (Rigid3d* pose : {&key_.world_from_cam, &last_.world_from_cam, &world_from_before_}) {
+  for (Rigid3d* pose : {&key_.world_from_cam, &last_.world_from_cam, &world_from_before_,
+                        &depth_key_.world_from_cam}) {
     *pose = correction * *pose;
     pose->linear() = NearestRotation(pose->linear());
   }
