@@ -53,10 +53,11 @@ struct OdometryOptions {
   // cannot freeze the trajectory forever. 0 = never.
   int max_rejected_run = 30;
   // When the features give no verified motion, align the frame's depth image with the last
-  // estimated frame's (status "icp"; DepthAligner: ICP from several starts, accepted only when
-  // the majority of the overlapping depth agrees). On fr1/desk's fast turn at every 3rd frame it
-  // turns 6 predicted frames (up to 49 degrees off) into ICP estimates within 5.5 degrees (see
-  // docs/benchmarks.md). false = features only (the paper).
+  // estimated frame's or the depth keyframe's (depth_keyframe, below); status "icp".
+  // DepthAligner: ICP from several starts, accepted only when the majority of the overlapping
+  // depth agrees. On fr1/desk's fast turn at every 3rd frame it turns 6 predicted frames (up to
+  // 49 degrees off) into ICP estimates within 5.5 degrees (see docs/benchmarks.md). false =
+  // features only (the paper).
   bool depth_fallback = true;
   // In a run of frames aligned by depth, align each with the run's depth keyframe (the frame
   // the last alignment against the frame before was made with) while that succeeds and its
