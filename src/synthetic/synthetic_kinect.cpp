@@ -30,6 +30,11 @@ void SyntheticKinectOptions::Check() const {
     throw std::invalid_argument("SyntheticKinectOptions.color and .ir sizes must be > 0");
 }
 
+void AddKinectDepthNoise(cv::RNG& rng, cv::Mat* depth_m) {
+  for (auto it = depth_m->begin<float>(); it != depth_m->end<float>(); ++it)
+    if (*it > 0) *it += static_cast<float>(rng.gaussian(kKinectDepthNoiseCoeff * *it * *it));
+}
+
 Calibration SyntheticKinectCalibration(const SyntheticKinectOptions& o, bool depth_aware) {
   o.Check();
   Calibration c;
@@ -114,9 +119,7 @@ std::vector<Rigid3d> WriteSyntheticKinectRecording(const std::string& folder,
       recorder.AddAccel(t + 300, ts, &state, sizeof(state));
     }
     cv::Mat depth = scene.RenderDepth(o.ir, world_from_ir);
-    if (o.depth_noise)
-      for (auto it = depth.begin<float>(); it != depth.end<float>(); ++it)
-        if (*it > 0) *it += static_cast<float>(noise.gaussian(kKinectDepthNoiseCoeff * *it * *it));
+    if (o.depth_noise) AddKinectDepthNoise(noise, &depth);
     const cv::Mat raw = KinectRawFromDepth(depth);
     recorder.AddDepth(t + 1000, ts + 1000, raw.ptr<uint16_t>(), raw.cols, raw.rows);
 

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "rgbdvo/synthetic/synthetic.hpp"
+#include "rgbdvo/synthetic/synthetic_kinect.hpp"
 #include "test_support.hpp"
 
 using namespace rgbdvo;
@@ -497,10 +498,8 @@ TEST_CASE("A run of frames aligned by depth is aligned with its depth keyframe")
       Frame f = Render(scene, cam, path[i], i);
       if (i >= 1) {
         cv::GaussianBlur(f.bgr, f.bgr, cv::Size(0, 0), 25);
-        cv::Mat noise(f.depth_m.size(), CV_32F);
         cv::RNG rng(static_cast<uint64_t>(i));
-        rng.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
-        f.depth_m += noise.mul(f.depth_m.mul(f.depth_m)) * kKinectDepthNoiseCoeff;
+        AddKinectDepthNoise(rng, &f.depth_m);
       }
       r = odometry.Process(f);
       INFO("depth keyframe " << keyframe << ", frame " << i << " " << r.StatusString());

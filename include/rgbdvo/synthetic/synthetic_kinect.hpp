@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,11 @@ struct SyntheticKinectOptions {
   uint32_t noise_seed = 1;
   void Check() const;
 };
+
+// Adds the Kinect's depth noise to a CV_32FC1 depth image in metres: Gaussian on Z with sigma
+// = kKinectDepthNoiseCoeff Z^2 (Khoshelham & Elberink 2012), drawn from `rng` pixel by pixel in
+// row order; pixels without a reading (0) stay 0.
+void AddKinectDepthNoise(cv::RNG& rng, cv::Mat* depth_m);
 
 // The calibration matching the simulation, K_ir = the IR intrinsics. Eq. 1 as above (exact at
 // the reference depth), or with depth_aware the mapping exact at every depth: A, C as above,
