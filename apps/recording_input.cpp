@@ -46,12 +46,25 @@ bool IsRosbagFile(const std::string& path) {
 
 namespace {
 
-// One line on stderr when colour frames found no depth frame (of their own, one to one).
-void ReportUnpaired(const FrameSource& recording, const SourceOptions& options) {
+// One line on stderr when colour frames found no depth frame (of their own, one to one), and
+// one for each change putting rgb.txt in time order made.
+void ReportSkippedFrames(const FrameSource& recording, const SourceOptions& options) {
   const bool one_to_one = options.tum.pairing == Pairing::kOneToOne;
   size_t unpaired = 0;
   double window = options.tum.max_time_diff_s;
   std::string first;
+  if (auto* tum = dynamic_cast<const TumSource*>(&recording)) {
+    const TimeOrderRepair& order = tum->rgb_order();
+    const auto lines = [](size_t n) { return std::to_string(n) + (n == 1 ? " line" : " lines"); };
+    if (order.out_of_order > 0)
+      std::cerr << "rgbdvo: warning: " << tum->folder() << "/rgb.txt: " << lines(order.out_of_order)
+                << " out of time order; frames taken in time order\n";
+    if (!order.repeated.empty())
+      std::cerr << "rgbdvo: warning: " << tum->folder() << "/rgb.txt: skipping "
+                << lines(order.repeated.size())
+                << (order.repeated.size() == 1 ? " that repeats" : " that repeat")
+                << " an earlier line's timestamp (first: " << order.repeated.front().path << ")\n";
+  }
   if (auto* tum = dynamic_cast<const TumSource*>(&recording); tum && !tum->unpaired().empty()) {
     unpaired = tum->unpaired().size();
     first = " (first: " + tum->unpaired().front().path + ")";
@@ -128,7 +141,7 @@ Recording OpenRecordingInput(const RecordingArgs& args) {
     source_options.tum.depth_units_per_m = r.calib.depth_units_per_m;
   source_options.tum.pairing = source_options.fakenect.pairing = ParsePairing(args.pairing);
   r.source = OpenRecording(args.path, source_options);
-  ReportUnpaired(*r.source, source_options);
+  ReportSkippedFrames(*r.source, source_options);
   r.inputs = {r.calib_source, args.path};
   const std::filesystem::path folder =
       is_file ? std::filesystem::path(args.path).parent_path() : std::filesystem::path(args.path);

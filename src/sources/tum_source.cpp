@@ -35,6 +35,25 @@ std::vector<TumListEntry> ReadTumList(const std::string& path) {
   return entries;
 }
 
+TimeOrderRepair PutInTimeOrder(std::vector<TumListEntry>* entries) {
+  TimeOrderRepair repair;
+  for (size_t i = 1; i < entries->size(); ++i)
+    if ((*entries)[i].timestamp < (*entries)[i - 1].timestamp) ++repair.out_of_order;
+  std::stable_sort(
+      entries->begin(), entries->end(),
+      [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });
+  std::vector<TumListEntry> kept;
+  kept.reserve(entries->size());
+  for (TumListEntry& e : *entries) {
+    if (!kept.empty() && e.timestamp == kept.back().timestamp)
+      repair.repeated.push_back(std::move(e));
+    else
+      kept.push_back(std::move(e));
+  }
+  entries->swap(kept);
+  return repair;
+}
+
 bool IsTumFolder(const std::string& folder) {
   return fs::is_regular_file(fs::path(folder) / "rgb.txt") &&
          fs::is_regular_file(fs::path(folder) / "depth.txt");
@@ -47,7 +66,8 @@ TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
   for (const char* list : {"rgb.txt", "depth.txt"})
     if (!fs::is_regular_file(fs::path(folder) / list))
       throw std::runtime_error(folder + ": missing " + list + " (not a TUM RGB-D folder)");
-  const std::vector<TumListEntry> rgb = ReadTumList((fs::path(folder) / "rgb.txt").string());
+  std::vector<TumListEntry> rgb = ReadTumList((fs::path(folder) / "rgb.txt").string());
+  rgb_order_ = PutInTimeOrder(&rgb);
   std::vector<TumListEntry> depth = ReadTumList((fs::path(folder) / "depth.txt").string());
   std::sort(depth.begin(), depth.end(),
             [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });

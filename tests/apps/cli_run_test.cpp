@@ -483,6 +483,29 @@ TEST_CASE("rgbdvo run writes TUM trajectories a strict reader accepts: 8 numbers
   }
 }
 
+TEST_CASE("rgbdvo run takes an rgb.txt edited out of order in time order, and says so") {
+  // The synthetic folder's rgb.txt with its lines reversed and its last line repeated.
+  const std::string dir = SyntheticFolder();
+  std::vector<std::string> lines;
+  for (const std::string& line : Lines(dir + "/rgb.txt"))
+    if (!line.empty() && line[0] != '#') lines.push_back(line);
+  REQUIRE(lines.size() == 6);
+  {
+    std::ofstream rgb(dir + "/rgb.txt");
+    for (auto it = lines.rbegin(); it != lines.rend(); ++it) rgb << *it << "\n";
+    rgb << lines.back() << "\n";
+  }
+  int code = 0;
+  const std::string out =
+      Run(dir + " --calib " + SyntheticCalib(dir) + " --quiet --tum " + dir + "/t.txt", &code);
+  CHECK(code == 0);
+  CHECK_THAT(out,
+             Catch::Contains("rgb.txt: 5 lines out of time order; frames taken in time order"));
+  CHECK_THAT(out, Catch::Contains("rgb.txt: skipping 1 line that repeats an earlier line's "
+                                  "timestamp"));
+  CHECK(StrictTumStamps(dir + "/t.txt").size() == 6);  // ascending, each once
+}
+
 TEST_CASE("rgbdvo run --gravity reads the folder's accelerometer and says what it did") {
   const std::string dir = SyntheticFolder();
   const std::string calib = SyntheticCalib(dir);

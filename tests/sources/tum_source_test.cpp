@@ -89,3 +89,25 @@ TEST_CASE("TumSource names unreadable, truncated and wrongly sized images") {
   TumSource missing(gone, TumSourceOptions{});
   CHECK_THROWS_WITH(missing.Next(), Catch::Contains("depth/0.png"));
 }
+
+TEST_CASE("TumSource takes rgb.txt in time order, one frame per timestamp") {
+  // A list edited by hand: 1.10 before 1.00, and 1.20 twice (its second image differs).
+  const std::string dir = MakeFolder({1.10, 1.00, 1.20, 1.20, 1.30}, {1.00, 1.10, 1.20, 1.30});
+  TumSource source(dir, TumSourceOptions{});
+  CHECK(source.rgb_order().out_of_order == 1);
+  REQUIRE(source.rgb_order().repeated.size() == 1);
+  CHECK(source.rgb_order().repeated[0].path == "rgb/3.png");  // the first of the two is kept
+  std::vector<double> stamps;
+  std::vector<std::string> names;
+  while (auto f = source.Next()) {
+    stamps.push_back(f->color_timestamp);
+    names.push_back(f->name);
+  }
+  CHECK(stamps == std::vector<double>{1.00, 1.10, 1.20, 1.30});
+  CHECK(names == std::vector<std::string>{"rgb/1.png", "rgb/0.png", "rgb/2.png", "rgb/4.png"});
+
+  const std::string in_order = MakeFolder({1.00, 1.10}, {1.00, 1.10});
+  TumSource plain(in_order, TumSourceOptions{});
+  CHECK(plain.rgb_order().out_of_order == 0);
+  CHECK(plain.rgb_order().repeated.empty());
+}

@@ -34,6 +34,15 @@ struct TumPair {
 // Throws std::runtime_error naming the file and line for unreadable files or malformed lines.
 std::vector<TumListEntry> ReadTumList(const std::string& path);
 
+// What putting a colour list in time order changed (a list concatenated or edited by hand).
+struct TimeOrderRepair {
+  size_t out_of_order = 0;             // lines whose timestamp is below the line's before
+  std::vector<TumListEntry> repeated;  // lines dropped: their timestamp is an earlier line's
+};
+// Sorts `entries` by timestamp (stable) and keeps the first of each timestamp: every pose gets a
+// distinct, increasing stamp, as trajectory formats and evaluation tools require.
+TimeOrderRepair PutInTimeOrder(std::vector<TumListEntry>* entries);
+
 // True when `folder` has the TUM layout (rgb.txt and depth.txt).
 bool IsTumFolder(const std::string& folder);
 
@@ -51,9 +60,12 @@ class TumSource : public FrameSource {
   std::optional<size_t> Size() const override { return pairs_.size(); }
 
   size_t size() const { return pairs_.size(); }
+  const std::string& folder() const { return folder_; }
   // Colour frames with no depth frame within the window, or (one-to-one) whose candidates were
   // all taken by closer pairs (reported, then skipped).
   const std::vector<TumListEntry>& unpaired() const { return unpaired_; }
+  // What PutInTimeOrder changed in rgb.txt (reported, then taken in time order).
+  const TimeOrderRepair& rgb_order() const { return rgb_order_; }
 
  private:
   std::string folder_;
@@ -61,6 +73,7 @@ class TumSource : public FrameSource {
   TumSourceOptions options_;
   std::vector<TumPair> pairs_;
   std::vector<TumListEntry> unpaired_;
+  TimeOrderRepair rgb_order_;
   AccelerometerTrack accelerometer_;  // with options_.accelerometer
   size_t next_ = 0;
   void ReadAccelerometer();
