@@ -16,6 +16,7 @@
 #include "rgbdvo/odometry/planarity_check.hpp"
 #include "rgbdvo/odometry/tracking_gaps.hpp"
 #include "rgbdvo/sensor/depth_check.hpp"
+#include "rgbdvo/sensor/principal_point_check.hpp"
 #include "rgbdvo/util/stopwatch.hpp"
 
 namespace rgbdvo {
@@ -256,9 +257,13 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     if (d.error) std::rethrow_exception(d.error);
     summary.decode_seconds += d.decode_seconds;
     if (!d.frame) break;
-    if (summary.frames == 0 && on_warning)
+    if (summary.frames == 0 && on_warning) {
       if (std::optional<std::string> w = CheckDepthScale(d.frame->depth_m, odometry.calibration()))
         on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
+      if (std::optional<std::string> w = CheckPrincipalPoint(
+              odometry.calibration(), d.frame->depth_m.cols, d.frame->depth_m.rows))
+        on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
+    }
     FrameResult result = odometry.Process(*d.frame, std::move(d.features));
     result.times.features = d.feature_seconds;
     const Stopwatch t0;

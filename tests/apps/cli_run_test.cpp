@@ -506,6 +506,24 @@ TEST_CASE("rgbdvo run takes an rgb.txt edited out of order in time order, and sa
   CHECK(StrictTumStamps(dir + "/t.txt").size() == 6);  // ascending, each once
 }
 
+TEST_CASE("rgbdvo run warns when the calibration was made for another image size") {
+  const std::string dir = SyntheticFolder();  // 640x480
+  int code = 0;
+  std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --quiet", &code);
+  CHECK(code == 0);
+  CHECK_THAT(out, !Catch::Contains("principal point"));
+  // The same camera calibrated at 1280x960: every number of K twice as large.
+  const std::string big = dir + "/calib_1280.yaml";
+  std::ofstream(big) << "%YAML:1.0\n---\nA: 1.\nB: 0.\nC: 1.\nD: 0.\n"
+                        "K_ir: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+                        "   data: [ 1050., 0., 639.5, 0., 1050., 479.5, 0., 0., 1. ]\n"
+                        "min_depth_m: 0.4\nmax_depth_m: 8.\n";
+  out = Run(dir + " --calib " + big + " --quiet", &code);
+  CHECK(code == 0);
+  CHECK_THAT(out, Catch::Contains("warning: frame 0: the calibration's principal point (639.5, "
+                                  "479.5) is far from the centre of the 640x480 depth image"));
+}
+
 TEST_CASE("rgbdvo run --gravity reads the folder's accelerometer and says what it did") {
   const std::string dir = SyntheticFolder();
   const std::string calib = SyntheticCalib(dir);
