@@ -24,8 +24,9 @@ void OpenBag(rosbag::Bag* bag, const std::string& path) {
   try {
     bag->open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& e) {
-    throw std::runtime_error(path + ": not a readable ROS 1 bag (" + e.what() +
-                             "; a truncated bag can be repaired with `rosbag reindex`)");
+    throw std::runtime_error(
+        path + ": not a readable ROS 1 bag (" + e.what() +
+        "; a truncated bag can be repaired with `rosbag reindex`, Debian package python3-rosbag)");
   }
 }
 
