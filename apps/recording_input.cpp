@@ -46,28 +46,31 @@ bool IsRosbagFile(const std::string& path) {
 
 namespace {
 
-// One line on stderr when colour frames found no depth frame (of their own, one to one), and
-// one for each change putting rgb.txt in time order made.
+// One line on stderr for each change putting rgb.txt in time order made (TimeOrderRepair).
+void ReportTimeOrder(const TumSource& tum) {
+  const TimeOrderRepair& order = tum.rgb_order();
+  const auto lines = [](size_t n) { return std::to_string(n) + (n == 1 ? " line" : " lines"); };
+  if (order.out_of_order > 0)
+    std::cerr << "rgbdvo: warning: " << tum.folder() << "/rgb.txt: " << lines(order.out_of_order)
+              << " out of time order; frames taken in time order\n";
+  if (!order.repeated.empty())
+    std::cerr << "rgbdvo: warning: " << tum.folder() << "/rgb.txt: skipping "
+              << lines(order.repeated.size())
+              << (order.repeated.size() == 1 ? " that repeats" : " that repeat")
+              << " an earlier line's timestamp (first: " << order.repeated.front().path << ")\n";
+}
+
+// The lines of ReportTimeOrder, and one when colour frames found no depth frame (of their own,
+// one to one).
 void ReportSkippedFrames(const FrameSource& recording, const SourceOptions& options) {
   const bool one_to_one = options.tum.pairing == Pairing::kOneToOne;
   size_t unpaired = 0;
   double window = options.tum.max_time_diff_s;
   std::string first;
   if (auto* tum = dynamic_cast<const TumSource*>(&recording)) {
-    const TimeOrderRepair& order = tum->rgb_order();
-    const auto lines = [](size_t n) { return std::to_string(n) + (n == 1 ? " line" : " lines"); };
-    if (order.out_of_order > 0)
-      std::cerr << "rgbdvo: warning: " << tum->folder() << "/rgb.txt: " << lines(order.out_of_order)
-                << " out of time order; frames taken in time order\n";
-    if (!order.repeated.empty())
-      std::cerr << "rgbdvo: warning: " << tum->folder() << "/rgb.txt: skipping "
-                << lines(order.repeated.size())
-                << (order.repeated.size() == 1 ? " that repeats" : " that repeat")
-                << " an earlier line's timestamp (first: " << order.repeated.front().path << ")\n";
-  }
-  if (auto* tum = dynamic_cast<const TumSource*>(&recording); tum && !tum->unpaired().empty()) {
+    ReportTimeOrder(*tum);
     unpaired = tum->unpaired().size();
-    first = " (first: " + tum->unpaired().front().path + ")";
+    if (unpaired > 0) first = " (first: " + tum->unpaired().front().path + ")";
   } else if (auto* fakenect = dynamic_cast<const FakenectSource*>(&recording)) {
     unpaired = static_cast<size_t>(fakenect->unpaired());
     window = options.fakenect.max_time_diff_s;

@@ -258,11 +258,11 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     summary.decode_seconds += d.decode_seconds;
     if (!d.frame) break;
     if (summary.frames == 0 && on_warning) {
-      if (std::optional<std::string> w = CheckDepthScale(d.frame->depth_m, odometry.calibration()))
-        on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
-      if (std::optional<std::string> w = CheckPrincipalPoint(
-              odometry.calibration(), d.frame->depth_m.cols, d.frame->depth_m.rows))
-        on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
+      const Calibration& calib = odometry.calibration();
+      const cv::Mat& depth = d.frame->depth_m;
+      for (const std::optional<std::string>& w :
+           {CheckDepthScale(depth, calib), CheckPrincipalPoint(calib, depth.cols, depth.rows)})
+        if (w) on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
     }
     FrameResult result = odometry.Process(*d.frame, std::move(d.features));
     result.times.features = d.feature_seconds;

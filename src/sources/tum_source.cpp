@@ -35,13 +35,17 @@ std::vector<TumListEntry> ReadTumList(const std::string& path) {
   return entries;
 }
 
+namespace {
+
+bool Earlier(const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; }
+
+}  // namespace
+
 TimeOrderRepair PutInTimeOrder(std::vector<TumListEntry>* entries) {
   TimeOrderRepair repair;
   for (size_t i = 1; i < entries->size(); ++i)
     if ((*entries)[i].timestamp < (*entries)[i - 1].timestamp) ++repair.out_of_order;
-  std::stable_sort(
-      entries->begin(), entries->end(),
-      [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });
+  std::stable_sort(entries->begin(), entries->end(), Earlier);
   std::vector<TumListEntry> kept;
   kept.reserve(entries->size());
   for (TumListEntry& e : *entries) {
@@ -69,8 +73,7 @@ TumSource::TumSource(const std::string& folder, const TumSourceOptions& options)
   std::vector<TumListEntry> rgb = ReadTumList((fs::path(folder) / "rgb.txt").string());
   rgb_order_ = PutInTimeOrder(&rgb);
   std::vector<TumListEntry> depth = ReadTumList((fs::path(folder) / "depth.txt").string());
-  std::sort(depth.begin(), depth.end(),
-            [](const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; });
+  std::sort(depth.begin(), depth.end(), Earlier);
   std::vector<double> rgb_s, depth_s;
   for (const TumListEntry& r : rgb) rgb_s.push_back(r.timestamp);
   for (const TumListEntry& d : depth) depth_s.push_back(d.timestamp);
