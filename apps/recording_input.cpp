@@ -46,15 +46,16 @@ bool IsRosbagFile(const std::string& path) {
 
 namespace {
 
-// One line on stderr for each change putting rgb.txt in time order made (TimeOrderRepair).
+// One line on stderr for each change putting the colour list (rgb.txt or an association file)
+// in time order made (TimeOrderRepair).
 void ReportTimeOrder(const TumSource& tum) {
   const TimeOrderRepair& order = tum.rgb_order();
   const auto lines = [](size_t n) { return std::to_string(n) + (n == 1 ? " line" : " lines"); };
   if (order.out_of_order > 0)
-    std::cerr << "rgbdvo: warning: " << tum.folder() << "/rgb.txt: " << lines(order.out_of_order)
+    std::cerr << "rgbdvo: warning: " << tum.rgb_list() << ": " << lines(order.out_of_order)
               << " out of time order; frames taken in time order\n";
   if (!order.repeated.empty())
-    std::cerr << "rgbdvo: warning: " << tum.folder() << "/rgb.txt: skipping "
+    std::cerr << "rgbdvo: warning: " << tum.rgb_list() << ": skipping "
               << lines(order.repeated.size())
               << (order.repeated.size() == 1 ? " that repeats" : " that repeat")
               << " an earlier line's timestamp (first: " << order.repeated.front().path << ")\n";

@@ -39,24 +39,36 @@ namespace {
 
 bool Earlier(const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; }
 
+// The colour frame of a list entry or of a pair: what the time order is taken by.
+const TumListEntry& Colour(const TumListEntry& e) { return e; }
+const TumListEntry& Colour(const TumPair& p) { return p.rgb; }
+
+template <typename Item>
+TimeOrderRepair PutInColourTimeOrder(std::vector<Item>* items) {
+  TimeOrderRepair repair;
+  for (size_t i = 1; i < items->size(); ++i)
+    if (Colour((*items)[i]).timestamp < Colour((*items)[i - 1]).timestamp) ++repair.out_of_order;
+  std::stable_sort(items->begin(), items->end(),
+                   [](const Item& a, const Item& b) { return Earlier(Colour(a), Colour(b)); });
+  std::vector<Item> kept;
+  kept.reserve(items->size());
+  for (Item& item : *items) {
+    if (!kept.empty() && Colour(item).timestamp == Colour(kept.back()).timestamp)
+      repair.repeated.push_back(Colour(item));
+    else
+      kept.push_back(std::move(item));
+  }
+  items->swap(kept);
+  return repair;
+}
+
 }  // namespace
 
 TimeOrderRepair PutInTimeOrder(std::vector<TumListEntry>* entries) {
-  TimeOrderRepair repair;
-  for (size_t i = 1; i < entries->size(); ++i)
-    if ((*entries)[i].timestamp < (*entries)[i - 1].timestamp) ++repair.out_of_order;
-  std::stable_sort(entries->begin(), entries->end(), Earlier);
-  std::vector<TumListEntry> kept;
-  kept.reserve(entries->size());
-  for (TumListEntry& e : *entries) {
-    if (!kept.empty() && e.timestamp == kept.back().timestamp)
-      repair.repeated.push_back(std::move(e));
-    else
-      kept.push_back(std::move(e));
-  }
-  entries->swap(kept);
-  return repair;
+  return PutInColourTimeOrder(entries);
 }
+
+TimeOrderRepair PutInTimeOrder(std::vector<TumPair>* pairs) { return PutInColourTimeOrder(pairs); }
 
 bool IsTumFolder(const std::string& folder) {
   return fs::is_regular_file(fs::path(folder) / "rgb.txt") &&
@@ -92,6 +104,7 @@ TumSource::TumSource(const std::string& folder, std::vector<TumPair> pairs,
     : folder_(folder), origin_(origin), options_(options), pairs_(std::move(pairs)) {
   options_.Check();
   if (pairs_.empty()) throw std::runtime_error(origin + ": empty sequence (no pair)");
+  rgb_order_ = PutInTimeOrder(&pairs_);
   ReadAccelerometer();
 }
 
@@ -140,10 +153,15 @@ bool TumSource::Skip() {
   return true;
 }
 
+std::string TumSource::rgb_list() const {
+  return origin_.empty() ? (fs::path(folder_) / "rgb.txt").string() : origin_;
+}
+
 std::string TumSource::Describe() const {
   std::ostringstream s;
   if (!origin_.empty()) {
-    s << "association file " << origin_ << ": " << pairs_.size() << " rgb-depth pairs as given, "
+    s << "association file " << origin_ << ": " << pairs_.size()
+      << " rgb-depth pairs as the file pairs them, in time order, "
       << "depth " << options_.depth_units_per_m << " units per metre";
     if (options_.accelerometer) s << ", " << accelerometer_.size() << " accelerometer readings";
     return s.str();

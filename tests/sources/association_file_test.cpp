@@ -1,14 +1,17 @@
 // The TUM tools' association files: read as given, and run as the folder they pair.
 #include "rgbdvo/sources/association_file.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "rgbdvo/sources/open_source.hpp"
+#include "rgbdvo/sources/tum_source.hpp"
 #include "rgbdvo/util/temp_dir.hpp"
 #include "test_support.hpp"
 
@@ -88,4 +91,46 @@ TEST_CASE(
   CHECK(Slurp(d + "/file.txt") == Slurp(d + "/folder.txt"));
   CHECK(Slurp(d + "/only.txt") == Slurp(d + "/folder.txt"));
   CHECK(Lines(d + "/folder.txt").size() == 31);  // a header line and 30 poses
+}
+
+TEST_CASE(
+    "An association file edited out of time order is taken in time order, one pair per colour "
+    "timestamp, and rgbdvo run says so") {
+  const ScopedTempDir dir("rgbdvo_test_assoc_order_");
+  const std::string& d = dir.path();
+  // The excerpt's 30 lines with all but the first three reversed, and the sixth repeated at the
+  // end: 26 lines below the line before them, one repeating a timestamp.
+  std::vector<std::string> lines;
+  std::istringstream text(AssociationText(true));
+  for (std::string line; std::getline(text, line);)
+    if (line[0] != '#') lines.push_back(line);
+  REQUIRE(lines.size() == 30);
+  std::reverse(lines.begin() + 3, lines.end());
+  lines.push_back(lines[27]);  // the excerpt's sixth line, now 28th
+  {
+    std::ofstream out(d + "/assoc.txt");
+    for (const std::string& line : lines) out << line << "\n";
+  }
+  TumSource source(d, ReadAssociations(d + "/assoc.txt"), d + "/assoc.txt", TumSourceOptions{});
+  CHECK(source.rgb_order().out_of_order == 26);
+  REQUIRE(source.rgb_order().repeated.size() == 1);
+  CHECK(source.rgb_list() == d + "/assoc.txt");
+  std::vector<double> stamps;
+  while (auto f = source.Next()) stamps.push_back(f->color_timestamp);
+  CHECK(stamps.size() == 30);
+  CHECK(std::is_sorted(stamps.begin(), stamps.end()));
+  CHECK(std::adjacent_find(stamps.begin(), stamps.end()) == stamps.end());
+
+  std::string out;
+  REQUIRE(RunCommand(RgbdvoExe() + " run " + kExcerpt + " --calib tum_fr1 --quiet --tum " + d +
+                         "/folder.txt",
+                     &out) == 0);
+  REQUIRE(RunCommand(RgbdvoExe() + " run " + d + "/assoc.txt --calib tum_fr1 --quiet --tum " + d +
+                         "/file.txt",
+                     &out) == 0);
+  CHECK_THAT(out, Catch::Contains("assoc.txt: 26 lines out of time order; frames taken in time "
+                                  "order"));
+  CHECK_THAT(out, Catch::Contains("assoc.txt: skipping 1 line that repeats an earlier line's "
+                                  "timestamp"));
+  CHECK(Slurp(d + "/file.txt") == Slurp(d + "/folder.txt"));
 }

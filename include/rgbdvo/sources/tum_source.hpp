@@ -42,6 +42,9 @@ struct TimeOrderRepair {
 // Sorts `entries` by timestamp (stable) and keeps the first of each timestamp: every pose gets a
 // distinct, increasing stamp, as trajectory formats and evaluation tools require.
 TimeOrderRepair PutInTimeOrder(std::vector<TumListEntry>* entries);
+// The same for an association file's pairs, by their colour frame's timestamp (`repeated` holds
+// the colour entries of the pairs dropped).
+TimeOrderRepair PutInTimeOrder(std::vector<TumPair>* pairs);
 
 // True when `folder` has the TUM layout (rgb.txt and depth.txt).
 bool IsTumFolder(const std::string& folder);
@@ -50,8 +53,9 @@ class TumSource : public FrameSource {
  public:
   // Throws std::runtime_error naming the missing folder or list file, or an empty sequence.
   TumSource(const std::string& folder, const TumSourceOptions& options);
-  // The pairs as given (an association file's, association_file.hpp), paths relative to
-  // `folder`; `origin` names where they came from (for Describe). Throws for an empty list.
+  // The pairs as given (an association file's, association_file.hpp), put in time order by
+  // their colour frames (PutInTimeOrder), paths relative to `folder`; `origin` names where they
+  // came from (for Describe). Throws for an empty list.
   TumSource(const std::string& folder, std::vector<TumPair> pairs, const std::string& origin,
             const TumSourceOptions& options);
   std::optional<Frame> Next() override;
@@ -64,8 +68,10 @@ class TumSource : public FrameSource {
   // Colour frames with no depth frame within the window, or (one-to-one) whose candidates were
   // all taken by closer pairs (reported, then skipped).
   const std::vector<TumListEntry>& unpaired() const { return unpaired_; }
-  // What PutInTimeOrder changed in rgb.txt (reported, then taken in time order).
+  // What PutInTimeOrder changed in the list of colour frames (reported, then taken in time
+  // order), and that list's file: rgb.txt or the association file.
   const TimeOrderRepair& rgb_order() const { return rgb_order_; }
+  std::string rgb_list() const;
 
  private:
   std::string folder_;
