@@ -41,6 +41,10 @@ const std::vector<OdometryParameter> kParameters = {
     {"matching.guided_radius_px", "guided-radius",
      "guided matching: search radius around the motion prior's prediction, px (0 = brute force)",
      [](O& o) -> ParameterRef { return &o.guided_radius_px; }},
+    {"matching.guided_rematch", "guided-rematch",
+     "guided matching: match again around the estimate when its inliers reach the outer half of "
+     "the radius (the prior was off)",
+     [](O& o) -> ParameterRef { return &o.guided_rematch; }},
     {"lifting.max_depth_jump_ratio", "depth-jump",
      "bilinear depth, refused across jumps above this fraction (0 = nearest pixel)",
      [](O& o) -> ParameterRef { return &o.lifting.max_depth_jump_ratio; }},

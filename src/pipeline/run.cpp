@@ -200,9 +200,10 @@ std::string RunSummary::Matching() const {
   s.precision(1);
   const ErrorHistogram& h = prediction_error_px;
   s << "matching: " << fallbacks << " brute-force fallbacks in " << frames_with_fallback
-    << " frames; prediction error of the inliers (px): p50 " << h.Quantile(0.5) << ", p90 "
-    << h.Quantile(0.9) << ", p99 " << h.Quantile(0.99) << ", max " << h.max << " (" << h.n
-    << " inliers)";
+    << " frames, " << rematches
+    << " matched again around the estimate; prediction error of the inliers (px): p50 "
+    << h.Quantile(0.5) << ", p90 " << h.Quantile(0.9) << ", p99 " << h.Quantile(0.99) << ", max "
+    << h.max << " (" << h.n << " inliers)";
   return s.str();
 }
 
@@ -306,6 +307,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     summary.stage_seconds.ransac += result.times.ransac;
     summary.fallbacks += result.fallbacks;
     if (result.fallbacks > 0) ++summary.frames_with_fallback;
+    summary.rematches += result.rematches;
     if (result.status == FrameStatus::kAccepted)
       for (float e : result.prediction_error_px) summary.prediction_error_px.Add(e);
     summary.seconds = start.Seconds();

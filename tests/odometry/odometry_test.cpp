@@ -358,6 +358,42 @@ TEST_CASE("A prediction beyond the radius falls back to brute force and gives th
   CHECK(RigidNear(b.world_from_cam, path[2], 0.5, 0.01));
 }
 
+TEST_CASE("A prior off by most of the radius is corrected by matching again around the estimate") {
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.5);
+  // Frame 2's colour image claims to come late, so constant velocity extrapolates further than
+  // the camera moved: its keypoints are predicted about `late` steps of the path off (a step
+  // moves them about 15 px), within the radius but beyond its inner half.
+  const auto run = [&](bool rematch, double late) {
+    OdometryOptions options;
+    options.guided_rematch = rematch;
+    Odometry odometry(options, CalibFor(cam));
+    odometry.Process(Render(scene, cam, path[0], 0));
+    odometry.Process(Render(scene, cam, path[1], 1));
+    Frame f = Render(scene, cam, path[2], 2);
+    f.color_timestamp = f.timestamp = (2 + late) / 30.0;
+    return odometry.Process(f);
+  };
+  const FrameResult exact = run(true, 0.0);
+  INFO("with the right prior: " << exact.inliers << " inliers");
+  CHECK(exact.rematches == 0);
+  // 1.5 steps off: most prediction errors 15-30 px, so the radius cuts some right matches off.
+  const FrameResult once = run(false, 1.5), again = run(true, 1.5);
+  INFO("1.5 steps off: " << once.inliers << " inliers, matched again " << again.inliers);
+  CHECK(once.rematches == 0);
+  CHECK(again.rematches == 1);
+  REQUIRE(once.status == FrameStatus::kAccepted);
+  REQUIRE(again.status == FrameStatus::kAccepted);
+  CHECK(once.inliers < 0.8 * exact.inliers);
+  CHECK(again.inliers >= 0.95 * exact.inliers);
+  CHECK(RigidNear(again.world_from_cam, path[2], 0.2, 0.005));
+  // The prediction error is still measured from the prior the frame was predicted with.
+  REQUIRE(!again.prediction_error_px.empty());
+  CHECK(*std::max_element(again.prediction_error_px.begin(), again.prediction_error_px.end()) >
+        0.5 * OdometryOptions{}.guided_radius_px);
+}
+
 TEST_CASE("A new keyframe's pose is measured against the last frame too") {
   // The fusion acts only where a keyframe changes: until the first change the runs with and
   // without it agree exactly, from it on they differ. On exact rendering both stay as exact as
@@ -400,6 +436,8 @@ TEST_CASE("A new keyframe's pose is measured against the last frame too") {
 TEST_CASE("The paper preset matches by brute force") {
   CHECK(PresetOptions("paper").guided_radius_px == 0);
   CHECK(PresetOptions("default").guided_radius_px > 0);
+  CHECK(!PresetOptions("paper").guided_rematch);
+  CHECK(PresetOptions("default").guided_rematch);
 }
 
 TEST_CASE("With the depth fallback the blurred frames of a burst are aligned by depth") {

@@ -32,6 +32,11 @@ struct OdometryOptions {
   // and mutual check from `matching`); an estimate that fails verification is redone with
   // brute-force matching. 0 = brute force only (the paper). See GuidedMatchOptions::radius_px.
   double guided_radius_px = 30;
+  // Guided matching again, around the estimate, when its inliers' prediction error reaches the
+  // outer half of the radius (99th percentile above radius / 2): the prior was off by about as
+  // much as the radius (the motion reversed, or a thinned recording's longer steps), so right
+  // matches lay beyond it; the second estimate replaces the first if it passes verification.
+  bool guided_rematch = true;
   LiftOptions lifting;
   RansacOptions ransac;
   MotionCheckOptions verify;
@@ -165,6 +170,8 @@ struct FrameResult {
   int inliers = 0;
   // Estimates redone with brute-force matching because the guided one failed verification.
   int fallbacks = 0;
+  // Estimates redone with guided matching around the first estimate (guided_rematch).
+  int rematches = 0;
   // For each final inlier: the distance from where the motion prior predicted its reference
   // keypoint to the current keypoint it was matched with, colour pixels.
   std::vector<float> prediction_error_px;
@@ -220,7 +227,8 @@ class Odometry {
     bool pose_from_features = true;  // else from the depth alignment
   };
   // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided
-  // by world_from_cur_pred, with a brute-force retry if that fails verification.
+  // by world_from_cur_pred, with a brute-force retry if that fails verification, and guided
+  // again around the estimate where the prior was off (guided_rematch).
   MotionEstimate Estimate(const Reference& ref, const Reference& cur,
                           const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
   // RANSAC and refinement on the 3D pairs of `matches`; match_of_pair as in PairMatches.

@@ -76,13 +76,15 @@ struct RunSummary {
   int rows_left_out = 0;
   int fallbacks = 0;  // estimates redone with brute-force matching (FrameResult::fallbacks)
   int frames_with_fallback = 0;
+  int rematches = 0;  // estimates redone around the first estimate (FrameResult::rematches)
   // Prediction error of the final inliers of accepted frames (FrameResult::prediction_error_px).
   ErrorHistogram prediction_error_px;
   // One line: frames, each status, the longest gap, mean inliers, fps (and the rows left out of
   // the trajectory files, if any).
   std::string Brief() const;
   std::string Timing() const;  // one line: milliseconds per frame for each stage
-  // One line: brute-force fallbacks and percentiles of the prediction error.
+  // One line: brute-force fallbacks, estimates matched again and percentiles of the prediction
+  // error.
   std::string Matching() const;
 };
 
