@@ -35,7 +35,8 @@ struct OdometryOptions {
   // Guided matching again, around the estimate, when its inliers' prediction error reaches the
   // outer half of the radius (99th percentile above radius / 2): the prior was off by about as
   // much as the radius (the motion reversed, or a thinned recording's longer steps), so right
-  // matches lay beyond it; the second estimate replaces the first if it passes verification.
+  // matches lay beyond it; the second estimate replaces the first if it passes verification
+  // with at least as many inliers.
   bool guided_rematch = true;
   LiftOptions lifting;
   RansacOptions ransac;
