@@ -256,9 +256,10 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
     motion = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
     *reason = CheckMotion(options_.verify, motion);
   }
+  r->prediction_error_px =
+      PredictionErrors(predicted, matches, match_of_pair, motion, cur.features);
   if (guided && options_.guided_rematch && reason->empty() &&
-      Percentile(PredictionErrors(predicted, matches, match_of_pair, motion, cur.features), 0.99) >
-          0.5 * options_.guided_radius_px) {
+      Percentile(r->prediction_error_px, 0.99) > 0.5 * options_.guided_radius_px) {
     // The inliers reach into the outer half of the radius (or beyond it, after brute force):
     // the prior was off by about as much as the radius, so right matches lay beyond it, and an
     // estimate from those within it can be biased (fr1/xyz every 5th frame, where the motion
@@ -269,7 +270,7 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
     // of -1 inlier; fr1/xyz every 5th, where it was off, +94.)
     ++r->rematches;
     t0.Restart();
-    std::vector<cv::DMatch> again = MatchGuided(
+    const std::vector<cv::DMatch> again = MatchGuided(
         g, ref.features, PredictKeypoints(calib_, ref.points, motion.prev_from_cur.inverse()),
         cur.features);
     r->times.matching += t0.Seconds();
@@ -278,15 +279,13 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
     MotionEstimate second = EstimateFromMatches(ref, cur, again, r, &again_of_pair);
     if (CheckMotion(options_.verify, second).empty() &&
         second.inliers.size() >= motion.inliers.size()) {
+      r->prediction_error_px =
+          PredictionErrors(predicted, again, again_of_pair, second, cur.features);
       motion = std::move(second);
-      matches = std::move(again);
-      match_of_pair = std::move(again_of_pair);
     } else {
       r->matches = first_matches, r->pairs = first_pairs, r->inliers = first_inliers;
     }
   }
-  r->prediction_error_px =
-      PredictionErrors(predicted, matches, match_of_pair, motion, cur.features);
   return motion;
 }
 
