@@ -43,7 +43,7 @@ const std::vector<OdometryParameter> kParameters = {
      [](O& o) -> ParameterRef { return &o.guided_radius_px; }},
     {"matching.guided_rematch", "guided-rematch",
      "guided matching: match again around the estimate when its inliers reach the outer half of "
-     "the radius (the prior was off)",
+     "the radius (the prior was off); brute force decides a weak estimate it does not reproduce",
      [](O& o) -> ParameterRef { return &o.guided_rematch; }},
     {"lifting.max_depth_jump_ratio", "depth-jump",
      "bilinear depth, refused across jumps above this fraction (0 = nearest pixel)",

@@ -394,6 +394,76 @@ TEST_CASE("A prior off by most of the radius is corrected by matching again arou
         0.5 * OdometryOptions{}.guided_radius_px);
 }
 
+TEST_CASE("A few-inlier estimate that matching around it does not reproduce goes to brute force") {
+  // A wall 2 m away, 85 keypoints on a grid (100 px apart across, 25 px down, so that no window
+  // of the guided radius holds two of them); the camera is still for two frames, then slides
+  // so that every keypoint moves 60 px, twice the radius, where the still prior looks for it.
+  // In the third frame, 16 of the keypoints have two look-alikes besides their own: one 20 px
+  // from where they were (in the prior's window: a wrong motion they agree on) and one 45 px
+  // (beyond it, but in the window around that wrong motion's prediction, 25 px away).
+  const PinholeCamera cam;
+  constexpr double kDepth = 2.0;
+  cv::RNG rng(7);
+  Features ref;
+  for (int x = 40; x <= 440; x += 100)
+    for (int y = 40; y <= 440; y += 25) ref.keypoints.emplace_back(cv::Point2f(x, y), 4.0f);
+  const int n = static_cast<int>(ref.keypoints.size());
+  ref.descriptors.create(n, 128, CV_8U);
+  rng.fill(ref.descriptors, cv::RNG::UNIFORM, 0, 256);
+  Features moved;
+  std::vector<int> rows;
+  const auto add = [&](int i, float shift) {
+    moved.keypoints.emplace_back(ref.keypoints[i].pt + cv::Point2f(shift, 0), 4.0f);
+    rows.push_back(i);
+  };
+  for (int i = 0; i < n; ++i) add(i, 60);
+  constexpr int kLookAlikes = 16;
+  for (int i = 0; i < kLookAlikes; ++i) add(5 * i, 20), add(5 * i, 45);
+  moved.descriptors.create(static_cast<int>(rows.size()), 128, CV_8U);
+  for (size_t k = 0; k < rows.size(); ++k)
+    ref.descriptors.row(rows[k]).copyTo(moved.descriptors.row(static_cast<int>(k)));
+
+  const auto frame = [&](int index) {
+    Frame f;
+    f.index = index;
+    f.timestamp = f.color_timestamp = index / 30.0;
+    f.bgr = cv::Mat(cam.height, cam.width, CV_8UC3, cv::Scalar::all(128));
+    f.depth_m = cv::Mat(cam.height, cam.width, CV_32F, cv::Scalar(kDepth));
+    return f;
+  };
+  const auto run = [&](bool rematch) {
+    OdometryOptions options;
+    options.guided_rematch = rematch;
+    Odometry odometry(options, CalibFor(cam));
+    odometry.Process(frame(0), ref);
+    const FrameResult still = odometry.Process(frame(1), ref);
+    REQUIRE(still.status == FrameStatus::kAccepted);
+    REQUIRE(still.inliers == n);
+    return odometry.Process(frame(2), moved);
+  };
+  // The camera slid 60 px x 2 m / 525 px = 0.229 m; the keypoints moved +x, so the camera -x.
+  const double slide = 60 * kDepth / cam.fx;
+  const FrameResult without = run(false), with = run(true);
+  INFO("without matching again: " << without.inliers << " inliers, x "
+                                  << without.world_from_cam.translation().x());
+  INFO("with: " << with.inliers << " inliers, x " << with.world_from_cam.translation().x() << ", "
+                << with.fallbacks << " brute-force estimates");
+  // Without it the 16 look-alikes within the prior's window make a verified estimate a third
+  // of the slide short.
+  REQUIRE(HasFeatureEstimate(without.status));
+  CHECK(without.inliers == kLookAlikes);
+  CHECK(std::abs(without.world_from_cam.translation().x() + 20 * kDepth / cam.fx) < 0.005);
+  // With it, matching around that estimate finds none (each look-alike has its twin within
+  // the radius there), and brute force finds every keypoint without look-alikes.
+  REQUIRE(with.status == FrameStatus::kAccepted);
+  CHECK(with.rematches == 1);
+  CHECK(with.fallbacks == 1);
+  CHECK(with.inliers == n - kLookAlikes);
+  CHECK(std::abs(with.world_from_cam.translation().x() + slide) < 0.005);
+  CHECK(std::abs(with.world_from_cam.translation().y()) < 0.005);
+  CHECK(std::abs(with.world_from_cam.translation().z()) < 0.005);
+}
+
 TEST_CASE("A new keyframe's pose is measured against the last frame too") {
   // The fusion acts only where a keyframe changes: until the first change the runs with and
   // without it agree exactly, from it on they differ. On exact rendering both stay as exact as

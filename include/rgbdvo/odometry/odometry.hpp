@@ -36,7 +36,9 @@ struct OdometryOptions {
   // outer half of the radius (99th percentile above radius / 2): the prior was off by about as
   // much as the radius (the motion reversed, or a thinned recording's longer steps), so right
   // matches lay beyond it; the second estimate replaces the first if it passes verification
-  // with at least as many inliers.
+  // with at least as many inliers. When it finds fewer and the first has fewer than twice
+  // verify.min_inliers, the first may be a wrong motion a few wrong matches agree on: brute
+  // force then decides, its estimate taken with at least twice the inliers.
   bool guided_rematch = true;
   LiftOptions lifting;
   RansacOptions ransac;
@@ -169,7 +171,8 @@ struct FrameResult {
   int matches = 0;
   int pairs = 0;  // matches with depth at both ends
   int inliers = 0;
-  // Estimates redone with brute-force matching because the guided one failed verification.
+  // Estimates redone with brute-force matching: the guided one failed verification, or it had
+  // few inliers and matching around it found fewer (guided_rematch).
   int fallbacks = 0;
   // Estimates redone with guided matching around the first estimate (guided_rematch).
   int rematches = 0;
