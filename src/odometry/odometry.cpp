@@ -247,19 +247,42 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
   std::vector<int> match_of_pair;
   MotionEstimate motion = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
   *reason = CheckMotion(options_.verify, motion);
+  // Brute-force matching, timed and counted as a fallback.
+  const auto match_all = [&] {
+    ++r->fallbacks;
+    const Stopwatch t;
+    std::vector<cv::DMatch> all = MatchFeatures(options_.matching, ref.features, cur.features);
+    r->times.matching += t.Seconds();
+    return all;
+  };
   bool brute_forced = !guided;
   if (!brute_forced && !reason->empty()) {
     // The prior was wrong (or the guided matches too few): brute force, as without it.
-    ++r->fallbacks;
     brute_forced = true;
-    t0.Restart();
-    matches = MatchFeatures(options_.matching, ref.features, cur.features);
-    r->times.matching += t0.Seconds();
+    matches = match_all();
     motion = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
     *reason = CheckMotion(options_.verify, motion);
   }
   r->prediction_error_px =
       PredictionErrors(predicted, matches, match_of_pair, motion, cur.features);
+  // The estimate from `other` replaces `motion` if it passes verification with at least `factor`
+  // times its inliers; r's counts are the kept estimate's. Returns the other estimate's inliers
+  // (0 when it fails verification).
+  const auto replace_if_verified = [&](const std::vector<cv::DMatch>& other, size_t factor) {
+    const int kept_matches = r->matches, kept_pairs = r->pairs, kept_inliers = r->inliers;
+    std::vector<int> other_of_pair;
+    MotionEstimate estimate = EstimateFromMatches(ref, cur, other, r, &other_of_pair);
+    const bool verified = CheckMotion(options_.verify, estimate).empty();
+    const int inliers = verified ? r->inliers : 0;
+    if (verified && estimate.inliers.size() >= factor * motion.inliers.size()) {
+      r->prediction_error_px =
+          PredictionErrors(predicted, other, other_of_pair, estimate, cur.features);
+      motion = std::move(estimate);
+    } else {
+      r->matches = kept_matches, r->pairs = kept_pairs, r->inliers = kept_inliers;
+    }
+    return inliers;
+  };
   if (guided && options_.guided_rematch && reason->empty() &&
       Percentile(r->prediction_error_px, 0.99) > 0.5 * options_.guided_radius_px) {
     // The inliers reach into the outer half of the radius (or beyond it, after brute force):
@@ -276,43 +299,17 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
         g, ref.features, PredictKeypoints(calib_, ref.points, motion.prev_from_cur.inverse()),
         cur.features);
     r->times.matching += t0.Seconds();
-    const int first_matches = r->matches, first_pairs = r->pairs, first_inliers = r->inliers;
-    std::vector<int> again_of_pair;
-    MotionEstimate second = EstimateFromMatches(ref, cur, again, r, &again_of_pair);
-    const bool second_verified = CheckMotion(options_.verify, second).empty();
-    if (second_verified && second.inliers.size() >= motion.inliers.size()) {
-      r->prediction_error_px =
-          PredictionErrors(predicted, again, again_of_pair, second, cur.features);
-      motion = std::move(second);
-    } else {
-      const int second_inliers = second_verified ? r->inliers : 0;
-      r->matches = first_matches, r->pairs = first_pairs, r->inliers = first_inliers;
-      if (!brute_forced && second_inliers < first_inliers &&
-          first_inliers < 2 * options_.verify.min_inliers) {
-        // Matched around itself the estimate finds fewer inliers than it has, and it has few:
-        // it may be a wrong motion that a handful of wrong matches within the prior's window
-        // agree on. Brute force decides; its estimate replaces the first only with at least
-        // twice the inliers. (A reversed replay of fr1/xyz, one frame in 3, at a turn of the
-        // motion: 16 inliers 4.8 degrees off, 9 around them, 292 by brute force. On the blurred
-        // fast turn, where a few inliers are all the right motion leaves, brute force finds
-        // fewer.)
-        ++r->fallbacks;
-        t0.Restart();
-        const std::vector<cv::DMatch> all =
-            MatchFeatures(options_.matching, ref.features, cur.features);
-        r->times.matching += t0.Seconds();
-        std::vector<int> all_of_pair;
-        MotionEstimate third = EstimateFromMatches(ref, cur, all, r, &all_of_pair);
-        if (CheckMotion(options_.verify, third).empty() &&
-            third.inliers.size() >= 2 * motion.inliers.size()) {
-          r->prediction_error_px =
-              PredictionErrors(predicted, all, all_of_pair, third, cur.features);
-          motion = std::move(third);
-        } else {
-          r->matches = first_matches, r->pairs = first_pairs, r->inliers = first_inliers;
-        }
-      }
-    }
+    const int first_inliers = r->inliers;
+    const int again_inliers = replace_if_verified(again, 1);
+    // Matched around itself the estimate finds fewer inliers than it has (so it was kept), and
+    // it has few: it may be a wrong motion that a handful of wrong matches within the prior's
+    // window agree on. Brute force decides; its estimate replaces the first only with at least
+    // twice the inliers. (A reversed replay of fr1/xyz, one frame in 3, at a turn of the
+    // motion: 16 inliers 4.8 degrees off, 9 around them, 292 by brute force. On the blurred
+    // fast turn, where a few inliers are all the right motion leaves, brute force finds fewer.)
+    if (!brute_forced && again_inliers < first_inliers &&
+        first_inliers < 2 * options_.verify.min_inliers)
+      replace_if_verified(match_all(), 2);
   }
   return motion;
 }
