@@ -14,7 +14,6 @@ namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
-using Mat36 = Eigen::Matrix<double, 3, 6>;
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
   Eigen::Matrix3d m;
@@ -22,19 +21,51 @@ Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
   return m;
 }
 
+// d(residual)/d(point) of Residual: [a 0 b; 0 a c; 0 0 d].
+struct ResidualJacobian {
+  double a, b, c, d;
+};
+
 // Whitened residual of point q (in the observing camera) against observation obs (a point
 // whose X/Z, Y/Z, Z are what that camera measured), and d(residual)/d(q).
-Eigen::Vector3d Residual(const RefineOptions& o, double f, const Eigen::Vector3d& q,
-                         const Eigen::Vector3d& obs, Eigen::Matrix3d* J) {
+inline Eigen::Vector3d Residual(const RefineOptions& o, double f, const Eigen::Vector3d& q,
+                                const Eigen::Vector3d& obs, ResidualJacobian* J) {
   const double su = o.pixel_sigma / f;  // pixel noise in normalised coordinates
   const double sz = o.depth_noise_coeff * obs.z() * obs.z();
   const double iz = 1.0 / q.z();
   Eigen::Vector3d r((q.x() * iz - obs.x() / obs.z()) / su, (q.y() * iz - obs.y() / obs.z()) / su,
                     (q.z() - obs.z()) / sz);
-  if (J) {
-    *J << iz / su, 0, -q.x() * iz * iz / su, 0, iz / su, -q.y() * iz * iz / su, 0, 0, 1 / sz;
-  }
+  if (J) *J = {iz / su, -q.x() * iz * iz / su, -q.y() * iz * iz / su, 1 / sz};
   return r;
+}
+
+// H += w J^T J (its upper triangle only: Evaluate mirrors it once at the end) and g += w J^T r,
+// for the Rows x 6 Jacobian J given row by row. Plain arrays and loops: Eigen's fixed-size
+// products here went through the stack, written in halves and read back whole, and took a
+// third more time per refinement.
+template <int Rows>
+void AddWeighted(const double (&J)[Rows][6], const double (&r)[Rows], double w, Mat6* H, Vec6* g) {
+  for (int j = 0; j < 6; ++j) {
+    for (int i = 0; i <= j; ++i) {
+      double sum = 0;
+      for (int k = 0; k < Rows; ++k) sum += w * J[k][i] * J[k][j];
+      (*H)(i, j) += sum;
+    }
+    double sum = 0;
+    for (int k = 0; k < Rows; ++k) sum += w * J[k][j] * r[k];
+    (*g)(j) += sum;
+  }
+}
+
+// d(residual)/d(delta) = d(residual)/d(point) * d(point)/d(delta), the first as Residual gives it
+// (its zeros skipped), the second as 3 rows of 6.
+void Chain(const ResidualJacobian& dresidual, const double (&dpoint)[3][6], double (&J)[3][6]) {
+  const auto [a, b, c, d] = dresidual;
+  for (int j = 0; j < 6; ++j) {
+    J[0][j] = a * dpoint[0][j] + b * dpoint[2][j];
+    J[1][j] = a * dpoint[1][j] + c * dpoint[2][j];
+    J[2][j] = d * dpoint[2][j];
+  }
 }
 
 double Huber(double e, double k) { return e <= k ? 0.5 * e * e : k * (e - 0.5 * k); }
@@ -60,9 +91,8 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
       const double e = std::abs(r);
       cost += Huber(e, k);
       if (!H) continue;
-      const double w = e <= k ? 1.0 : k / e;
-      *H += w * J.transpose() * J;
-      *g += w * J.transpose() * r;
+      const double rows[1][6] = {{J(0), J(1), J(2), J(3), J(4), J(5)}}, res[1] = {r};
+      AddWeighted(rows, res, e <= k ? 1.0 : k / e, H, g);
     }
   }
   const Eigen::Matrix3d Rt = T.linear().transpose();
@@ -71,7 +101,7 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
     const Eigen::Vector3d q = T * p.p_cur;                        // cur point in prev
     const Eigen::Vector3d s = Rt * (p.p_prev - T.translation());  // prev point in cur
     if (q.z() <= 1e-6 || s.z() <= 1e-6) continue;
-    Eigen::Matrix3d Jq, Js;
+    ResidualJacobian Jq, Js;
     const Eigen::Vector3d rq = Residual(o, f, q, p.p_prev, H ? &Jq : nullptr);
     const Eigen::Vector3d rs = Residual(o, f, s, p.p_cur, H ? &Js : nullptr);
     for (int side = 0; side < 2; ++side) {
@@ -80,17 +110,31 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
       cost += Huber(e, o.huber_sigmas);
       if (!H) continue;
       const double w = e <= o.huber_sigmas ? 1.0 : o.huber_sigmas / e;  // IRLS weight
-      Mat36 dpoint;                                                     // d(point)/d(delta)
+      double dpoint[3][6];                                              // d(point)/d(delta)
       if (side == 0) {
-        dpoint << -Hat(q), Eigen::Matrix3d::Identity();  // Exp(d) q ~ q + w x q + v
+        // Exp(d) q ~ q + w x q + v: [-Hat(q) | I].
+        const Eigen::Matrix3d minus_hat = -Hat(q);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            dpoint[i][j] = minus_hat(i, j);
+            dpoint[i][j + 3] = i == j ? 1 : 0;
+          }
       } else {
-        dpoint << Rt * Hat(p.p_prev), -Rt;  // T^-1 Exp(-d) p ~ s + R^T(p x w - v)
+        // T^-1 Exp(-d) p ~ s + R^T(p x w - v): [R^T Hat(p) | -R^T].
+        const Eigen::Matrix3d RtHat = Rt * Hat(p.p_prev);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            dpoint[i][j] = RtHat(i, j);
+            dpoint[i][j + 3] = -Rt(i, j);
+          }
       }
-      const Mat36 J = (side == 0 ? Jq : Js) * dpoint;
-      *H += w * J.transpose() * J;
-      *g += w * J.transpose() * r;
+      double J[3][6];
+      Chain(side == 0 ? Jq : Js, dpoint, J);
+      const double res[3] = {r.x(), r.y(), r.z()};
+      AddWeighted(J, res, w, H, g);
     }
   }
+  if (H) H->triangularView<Eigen::StrictlyLower>() = H->transpose();
   const size_t n = idx.size() + (dense ? dense->size() : 0);
   return n == 0 ? 0 : cost / static_cast<double>(n);
 }
