@@ -18,10 +18,10 @@ void GuidedMatchOptions::Check() const {
 
 namespace {
 
-// Squared L2 distance of two byte descriptors (vectorised: 16-bit differences, 32-bit sums).
-// cv::normL2Sqr<uint8_t, int> gives the same sums, but compiled for the baseline CPU only:
-// whole runs took 1.04-1.09 times the CPU with it (fr1_xyz, paired runs).
-RGBDVO_SIMD_CLONES int DistanceSq(const uint8_t* a, const uint8_t* b, int n) {
+// Squared L2 distance of two byte descriptors (vectorised where the caller is: 16-bit
+// differences, 32-bit sums). cv::normL2Sqr<uint8_t, int> gives the same sums, but compiled for
+// the baseline CPU only: whole runs took 1.04-1.09 times the CPU with it (fr1_xyz, paired runs).
+inline int DistanceSq(const uint8_t* a, const uint8_t* b, int n) {
   int sum = 0;
   for (int k = 0; k < n; ++k) {
     const int d = a[k] - b[k];
@@ -36,6 +36,7 @@ struct Grid {
   float x0 = 0, y0 = 0, cell = 1;
   int nx = 0, ny = 0;
   std::vector<int> start, index;
+  std::vector<float> xs, ys;  // the keypoints' positions in the same order as index
 
   Grid(const std::vector<cv::KeyPoint>& kps, float cell_px) : cell(cell_px) {
     float x1 = 0, y1 = 0;
@@ -57,6 +58,12 @@ struct Grid {
     index.resize(kps.size());
     std::vector<int> fill(start.begin(), start.end() - 1);
     for (size_t j = 0; j < kps.size(); ++j) index[fill[cell_of[j]]++] = static_cast<int>(j);
+    xs.resize(kps.size());
+    ys.resize(kps.size());
+    for (size_t k = 0; k < kps.size(); ++k) {
+      xs[k] = kps[index[k]].pt.x;
+      ys[k] = kps[index[k]].pt.y;
+    }
   }
   int Cell(float x, float y) const {
     return static_cast<int>((y - y0) / cell) * nx + static_cast<int>((x - x0) / cell);
@@ -68,6 +75,39 @@ struct Grid {
     *hi = static_cast<int>(std::clamp(b, -1.0, n - 1.0));
   }
 };
+
+// A reference keypoint's nearest and second nearest candidate (squared distances) and the
+// nearest's index.
+struct Best {
+  float d1, d2;
+  int j;
+};
+
+// Reference keypoint i (descriptor a, predicted at px, py) against the current keypoints of
+// cells c0 .. c1 (one row of the grid) within sqrt(r2) pixels: updates i's best candidates and
+// each candidate's nearest reference keypoint. Ties go to the lower index, as in cv::BFMatcher.
+RGBDVO_SIMD_CLONES void CompareRow(const Grid& grid, int c0, int c1, double px, double py,
+                                   double r2, const uint8_t* a, int i, const cv::Mat& descriptors,
+                                   Best* b, float* cur_best, int* cur_best_ref) {
+  for (int k = grid.start[c0]; k < grid.start[c1 + 1]; ++k) {
+    const double dx = grid.xs[k] - px, dy = grid.ys[k] - py;
+    if (dx * dx + dy * dy > r2) continue;
+    const int j = grid.index[k];
+    // Exact: a whole number below 2^24 (128 x 255^2), as cv::BFMatcher's distances are.
+    const auto d = static_cast<float>(DistanceSq(a, descriptors.ptr<uint8_t>(j), descriptors.cols));
+    if (d < b->d1 || (d == b->d1 && j < b->j)) {
+      b->d2 = b->d1;
+      b->d1 = d;
+      b->j = j;
+    } else if (d < b->d2) {
+      b->d2 = d;
+    }
+    if (d < cur_best[j] || (d == cur_best[j] && i < cur_best_ref[j])) {
+      cur_best[j] = d;
+      cur_best_ref[j] = i;
+    }
+  }
+}
 
 }  // namespace
 
@@ -81,7 +121,6 @@ std::vector<cv::DMatch> MatchGuided(const GuidedMatchOptions& o, const Features&
   if (ref.descriptors.type() != CV_8U || cur.descriptors.type() != CV_8U ||
       ref.descriptors.cols != cur.descriptors.cols)
     throw std::invalid_argument("MatchGuided: CV_8U descriptors of the same length expected");
-  const int dims = cur.descriptors.cols;
   const double r = o.radius_px, r2 = r * r;
   const Grid grid(cur.keypoints, static_cast<float>(std::clamp(r, 4.0, 1e4)));
   constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -91,10 +130,6 @@ std::vector<cv::DMatch> MatchGuided(const GuidedMatchOptions& o, const Features&
   // keypoint of each current keypoint. Ties go to the lower index, as in cv::BFMatcher.
   std::vector<float> cur_best(cur.size(), kInf);
   std::vector<int> cur_best_ref(cur.size(), -1);
-  struct Best {
-    float d1, d2;
-    int j;
-  };
   std::vector<Best> ref_best(ref.size(), Best{kInf, kInf, -1});
   for (size_t i = 0; i < ref.size(); ++i) {
     if (!predicted[i]) continue;
@@ -102,30 +137,10 @@ std::vector<cv::DMatch> MatchGuided(const GuidedMatchOptions& o, const Features&
     int cx0, cx1, cy0, cy1;
     Grid::Range(px, r, grid.x0, grid.cell, grid.nx, &cx0, &cx1);
     Grid::Range(py, r, grid.y0, grid.cell, grid.ny, &cy0, &cy1);
-    const uint8_t* a = ref.descriptors.ptr<uint8_t>(static_cast<int>(i));
-    Best& b = ref_best[i];
     for (int cy = cy0; cy <= cy1; ++cy)
-      for (int cx = cx0; cx <= cx1; ++cx) {
-        const int c = cy * grid.nx + cx;
-        for (int k = grid.start[c]; k < grid.start[c + 1]; ++k) {
-          const int j = grid.index[k];
-          const double dx = cur.keypoints[j].pt.x - px, dy = cur.keypoints[j].pt.y - py;
-          if (dx * dx + dy * dy > r2) continue;
-          // Exact: a whole number below 2^24 (128 x 255^2), as cv::BFMatcher's distances are.
-          const auto d = static_cast<float>(DistanceSq(a, cur.descriptors.ptr<uint8_t>(j), dims));
-          if (d < b.d1 || (d == b.d1 && j < b.j)) {
-            b.d2 = b.d1;
-            b.d1 = d;
-            b.j = j;
-          } else if (d < b.d2) {
-            b.d2 = d;
-          }
-          if (d < cur_best[j] || (d == cur_best[j] && static_cast<int>(i) < cur_best_ref[j])) {
-            cur_best[j] = d;
-            cur_best_ref[j] = static_cast<int>(i);
-          }
-        }
-      }
+      CompareRow(grid, cy * grid.nx + cx0, cy * grid.nx + cx1, px, py, r2,
+                 ref.descriptors.ptr<uint8_t>(static_cast<int>(i)), static_cast<int>(i),
+                 cur.descriptors, &ref_best[i], cur_best.data(), cur_best_ref.data());
   }
   for (size_t i = 0; i < ref.size(); ++i) {
     const Best& b = ref_best[i];
