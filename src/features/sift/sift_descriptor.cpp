@@ -13,6 +13,7 @@ constexpr float kPi = 3.14159265358979f;
 typedef float v8f __attribute__((vector_size(32)));
 typedef int v8i __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
+typedef int v4i __attribute__((vector_size(16)));
 constexpr int kWidth = 4;          // spatial bins per side (Lowe: 4)
 constexpr int kBins = 8;           // orientation bins (Lowe: 8)
 constexpr float kBinWidth = 3.0f;  // a spatial bin is 3 sigma wide (OpenCV SIFT_DESCR_SCL_FCTR)
@@ -32,6 +33,7 @@ constexpr int kSpan = 2 * kPerBin;
 // keypoint), its Gaussian weight, and the bilinear weights with which it enters its bins.
 struct Grid {
   std::array<float, kGrid> offset;  // bin coordinate - (kWidth - 1) / 2, per grid line
+  std::array<float, kSamples> row_offset, col_offset;  // offset of each sample's row and column
   std::array<float, kSamples> weight;
   // Per spatial bin (row * kWidth + col), the bilinear weight of each sample of its square,
   // row by row (entry i: grid row kPerBin * br + i / kSpan, column kPerBin * bc + i % kSpan).
@@ -54,6 +56,8 @@ const Grid& TheGrid() {
     for (int r = 0; r < kGrid; ++r)
       for (int c = 0; c < kGrid; ++c) {
         const int s = r * kGrid + c;
+        g.row_offset[s] = g.offset[r];
+        g.col_offset[s] = g.offset[c];
         g.weight[s] = std::exp((g.offset[r] * g.offset[r] + g.offset[c] * g.offset[c]) * scale);
         // Grid line i lies between bins bin0[i] and bin0[i] + 1 = i / kPerBin (never on one).
         for (int a = 0; a < 2; ++a)
@@ -158,26 +162,21 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
 
   // 1. The gradient at every grid sample: central differences at the 4 pixels around it,
   //    interpolated bilinearly; 0 where the sample is too close to the image edge.
-  //    a) Where each sample lies, branch-free over a grid row (so that it vectorises): samples
-  //       too close to the edge are read at a clamped position and zeroed.
-  int at[kSamples];
+  //    a) Where each sample lies, branch-free over all samples (so that it vectorises): samples
+  //       too close to the edge are read at a clamped position and zeroed (mask 0).
+  int at[kSamples], mask[kSamples];
   float fxs[kSamples], fys[kSamples];
-  bool ins[kSamples];
-  for (int gr = 0; gr < kGrid; ++gr) {
-    const float r = grid.offset[gr];
-    for (int gc = 0; gc < kGrid; ++gc) {
-      const float c = grid.offset[gc];
-      // Rotated bin units -> image pixels (the inverse of OpenCV's rotation of pixel offsets).
-      const float px = x + cos_a * c + sin_a * r, py = y - sin_a * c + cos_a * r;
-      const float fpx = std::floor(px), fpy = std::floor(py);
-      const bool inside = fpx >= 1 && fpy >= 1 && fpx + 2 < cols && fpy + 2 < rows;
-      const int x0 = inside ? static_cast<int>(fpx) : 1, y0 = inside ? static_cast<int>(fpy) : 1;
-      const int s = gr * kGrid + gc;
-      at[s] = y0 * step + x0;
-      fxs[s] = px - fpx;
-      fys[s] = py - fpy;
-      ins[s] = inside;
-    }
+  for (int s = 0; s < kSamples; ++s) {
+    const float r = grid.row_offset[s], c = grid.col_offset[s];
+    // Rotated bin units -> image pixels (the inverse of OpenCV's rotation of pixel offsets).
+    const float px = x + cos_a * c + sin_a * r, py = y - sin_a * c + cos_a * r;
+    const float fpx = std::floor(px), fpy = std::floor(py);
+    const bool inside = fpx >= 1 && fpy >= 1 && fpx + 2 < cols && fpy + 2 < rows;
+    const int x0 = inside ? static_cast<int>(fpx) : 1, y0 = inside ? static_cast<int>(fpy) : 1;
+    at[s] = y0 * step + x0;
+    fxs[s] = px - fpx;
+    fys[s] = py - fpy;
+    mask[s] = inside ? -1 : 0;
   }
   //    b) Per sample, the 4 x 4 pixels around it (rows y0 - 1 .. y0 + 2, columns x0 - 1 ..
   //       x0 + 2) as 4 vector loads; the 8 central differences and the bilinear interpolation
@@ -199,9 +198,9 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
     const v4f g0 = __builtin_shufflevector(g, g, 0, 2, 0, 2);
     const v4f g1 = __builtin_shufflevector(g, g, 1, 3, 1, 3);
     const v4f fy = {fys[s], fys[s], fys[s], fys[s]};
-    const v4f d = g0 + fy * (g1 - g0);  // (dx, dy, dx, dy)
-    dx[s] = ins[s] ? d[0] : 0.0f;
-    dy[s] = ins[s] ? d[1] : 0.0f;
+    const v4f d = (v4f)((v4i)(g0 + fy * (g1 - g0)) & mask[s]);  // (dx, dy, dx, dy) or 0
+    dx[s] = d[0];
+    dy[s] = d[1];
   }
   // 2. Weighted magnitude and orientation bin relative to the keypoint's (vectorisable).
   float mag[kSamples], obin[kSamples];
@@ -214,14 +213,26 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
   }
   // 3. Trilinear interpolation into 4 x 4 spatial x 8 orientation bins: each sample's magnitude
   //    split between its two orientation bins as an 8-vector, added into its spatial bins.
-  float split[kSamples][kBins];
-  const v8i lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  //    a) The lower orientation bin o0 and the two shares (vectorisable).
+  int lower[kSamples];
+  float share0[kSamples], share1[kSamples];
   for (int s = 0; s < kSamples; ++s) {
-    const int o0 = std::min(static_cast<int>(obin[s]), kBins - 1);
-    const float m1 = mag[s] * (obin[s] - o0), m0 = mag[s] - m1;
-    // Lane o0 gets m0, lane o0 + 1 (mod 8) gets m1, the others 0.
-    const v8i in0 = lane == o0, in1 = lane == ((o0 + 1) & (kBins - 1));
-    const v8f v = (v8f)(in0 & (v8i)(v8f{} + m0)) + (v8f)(in1 & (v8i)(v8f{} + m1));
+    lower[s] = std::min(static_cast<int>(obin[s]), kBins - 1);
+    share1[s] = mag[s] * (obin[s] - lower[s]);
+    share0[s] = mag[s] - share1[s];
+  }
+  //    b) Lane o0 gets share0, lane o0 + 1 (mod 8) share1, the others 0: the two lanes' masks
+  //       from a table, so that a sample takes two loads, two ands and an addition.
+  static const std::array<v8i, kBins> lane_mask = [] {
+    std::array<v8i, kBins> m;
+    for (int o = 0; o < kBins; ++o) m[o] = v8i{0, 1, 2, 3, 4, 5, 6, 7} == o;
+    return m;
+  }();
+  float split[kSamples][kBins];
+  for (int s = 0; s < kSamples; ++s) {
+    const int o0 = lower[s], o1 = (o0 + 1) & (kBins - 1);
+    const v8f v = (v8f)(lane_mask[o0] & (v8i)(v8f{} + share0[s])) +
+                  (v8f)(lane_mask[o1] & (v8i)(v8f{} + share1[s]));
     std::memcpy(split[s], &v, sizeof v);
   }
   float hist[kWidth * kWidth * kBins];
@@ -243,16 +254,20 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
     }
   }
 
-  // Normalise, clip large gradients, renormalise (Lowe section 6.1); stored as 0..255.
-  float norm = 0;
-  for (float v : hist) norm += v * v;
-  const float clip = kClip * std::sqrt(norm);
-  norm = 0;
-  for (float& v : hist) {
-    v = std::min(v, clip);
-    norm += v * v;
-  }
-  const float scale = kToByte / std::max(std::sqrt(norm), 1e-7f);
+  // Normalise, clip large gradients, renormalise (Lowe section 6.1); stored as 0..255. The
+  // squared norms are summed in 8 lanes (a single running sum would be a chain of 128 dependent
+  // additions).
+  const auto norm_sq = [&hist] {
+    v8f sum = {};
+    for (int k = 0; k < kSiftDescriptorSize; k += kBins) {
+      const v8f v = Load(hist + k);
+      sum += v * v;
+    }
+    return ((sum[0] + sum[4]) + (sum[1] + sum[5])) + ((sum[2] + sum[6]) + (sum[3] + sum[7]));
+  };
+  const float clip = kClip * std::sqrt(norm_sq());
+  for (float& v : hist) v = std::min(v, clip);
+  const float scale = kToByte / std::max(std::sqrt(norm_sq()), 1e-7f);
   for (int k = 0; k < kSiftDescriptorSize; ++k)
     out[k] = static_cast<uint8_t>(std::min(255.0f, std::floor(hist[k] * scale + 0.5f)));
 }
