@@ -32,8 +32,8 @@ constexpr int kSpan = 2 * kPerBin;
 // The fixed sampling grid: where each sample lies (rotated bin units, relative to the
 // keypoint), its Gaussian weight, and the bilinear weights with which it enters its bins.
 struct Grid {
-  std::array<float, kGrid> offset;  // bin coordinate - (kWidth - 1) / 2, per grid line
-  std::array<float, kSamples> row_offset, col_offset;  // offset of each sample's row and column
+  // Each sample's row and column: bin coordinate - (kWidth - 1) / 2.
+  std::array<float, kSamples> row_offset, col_offset;
   std::array<float, kSamples> weight;
   // Per spatial bin (row * kWidth + col), the bilinear weight of each sample of its square,
   // row by row (entry i: grid row kPerBin * br + i / kSpan, column kPerBin * bc + i % kSpan).
@@ -44,10 +44,10 @@ const Grid& TheGrid() {
   static const Grid grid = [] {
     Grid g;
     int bin0[kGrid];
-    float frac[kGrid];
+    float offset[kGrid], frac[kGrid];
     for (int i = 0; i < kGrid; ++i) {
       const float b = -1.0f + (i + 0.5f) / kPerBin;  // bin centres at 0 .. kWidth - 1
-      g.offset[i] = b - 0.5f * (kWidth - 1);
+      offset[i] = b - 0.5f * (kWidth - 1);
       bin0[i] = static_cast<int>(std::floor(b));
       frac[i] = b - bin0[i];
     }
@@ -56,9 +56,9 @@ const Grid& TheGrid() {
     for (int r = 0; r < kGrid; ++r)
       for (int c = 0; c < kGrid; ++c) {
         const int s = r * kGrid + c;
-        g.row_offset[s] = g.offset[r];
-        g.col_offset[s] = g.offset[c];
-        g.weight[s] = std::exp((g.offset[r] * g.offset[r] + g.offset[c] * g.offset[c]) * scale);
+        g.row_offset[s] = offset[r];
+        g.col_offset[s] = offset[c];
+        g.weight[s] = std::exp((offset[r] * offset[r] + offset[c] * offset[c]) * scale);
         // Grid line i lies between bins bin0[i] and bin0[i] + 1 = i / kPerBin (never on one).
         for (int a = 0; a < 2; ++a)
           for (int b = 0; b < 2; ++b) {
