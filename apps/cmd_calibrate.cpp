@@ -4,13 +4,13 @@
 #include <iostream>
 #include <memory>
 #include <opencv2/highgui.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "commands.hpp"
 #include "rgbdvo/calibrate/auto_calibrate.hpp"
 #include "rgbdvo/calibrate/calibrate.hpp"
 #include "rgbdvo/calibrate/calibration_clicker.hpp"
 #include "rgbdvo/calibrate/pixel_pairs_file.hpp"
+#include "rgbdvo/io/opencv_codecs.hpp"
 #include "rgbdvo/sensor/calibration_catalog.hpp"
 #include "rgbdvo/sources/frame_cache.hpp"
 #include "rgbdvo/sources/open_source.hpp"
@@ -84,7 +84,7 @@ int Automatic(const CalibrateArgs& a) {
   std::cout << "wrote " << a.out << std::endl;
   if (!a.png.empty()) {
     const Frame& frame = frames[fit.picture_frame];
-    if (!cv::imwrite(a.png, AutoCalibrationPicture(a.auto_options, frame, calib)))
+    if (!ImwriteWithOpenCv(a.png, AutoCalibrationPicture(a.auto_options, frame, calib)))
       throw std::runtime_error(a.png + ": cannot write the picture");
     std::cout
         << "wrote " << a.png << " (frame " << frame.index << " " << frame.name

@@ -73,6 +73,12 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# OpenCV's image codecs are loaded when first needed (src/io/opencv_codecs.cpp), not linked, so
+# dpkg-shlibdeps does not see them: their package, named after the library's soname.
+get_target_property(RGBDVO_IMGCODECS_SONAME opencv_imgcodecs IMPORTED_SONAME_RELEASE)
+if(RGBDVO_IMGCODECS_SONAME MATCHES "^libopencv_imgcodecs\\.so\\.([0-9]+)$")
+  set(CPACK_DEBIAN_PACKAGE_DEPENDS "libopencv-imgcodecs${CMAKE_MATCH_1}")
+endif()
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gnuplot-nox")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libfreenect-bin")
 include(CPack)

@@ -11,11 +11,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the IMREAD_ flags
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "rgbdvo/io/opencv_codecs.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -321,7 +323,7 @@ cv::Mat ReadImage(const std::string& path, int imread_flags) {
     throw std::runtime_error(path + ": JPEG header claims " + std::to_string(size->first) + "x" +
                              std::to_string(size->second) + " pixels, more than the " +
                              std::to_string(kMaxImageSide) + " a side read here");
-  return r.success ? r.image : cv::imread(path, imread_flags);
+  return r.success ? r.image : ImreadWithOpenCv(path, imread_flags);
 }
 
 }  // namespace rgbdvo

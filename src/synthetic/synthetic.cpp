@@ -5,10 +5,10 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "rgbdvo/io/opencv_codecs.hpp"
 #include "rgbdvo/io/trajectory_io.hpp"
 #include "rgbdvo/sensor/depth_encoding.hpp"
 
@@ -203,10 +203,10 @@ std::vector<double> WriteTumSequence(const std::string& folder, const SyntheticS
     char name[32];
     std::snprintf(name, sizeof(name), "%06zu.png", k);
     const std::string rgb = std::string("rgb/") + name, depth = std::string("depth/") + name;
-    if (!cv::imwrite((fs::path(folder) / rgb).string(),
-                     scene.RenderColor(camera, world_from_cam[k])) ||
-        !cv::imwrite((fs::path(folder) / depth).string(),
-                     Scaled16FromDepth(scene.RenderDepth(camera, world_from_cam[k]), 5000.0)))
+    if (!ImwriteWithOpenCv((fs::path(folder) / rgb).string(),
+                           scene.RenderColor(camera, world_from_cam[k])) ||
+        !ImwriteWithOpenCv((fs::path(folder) / depth).string(),
+                           Scaled16FromDepth(scene.RenderDepth(camera, world_from_cam[k]), 5000.0)))
       throw std::runtime_error(folder + ": cannot write frame " + name);
     rgb_list << t << ' ' << rgb << '\n';
     depth_list << t + 0.004 << ' ' << depth << '\n';

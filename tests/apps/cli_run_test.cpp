@@ -150,6 +150,36 @@ TEST_CASE("rgbdvo run: a truncated image stops the run but keeps the rows writte
   CHECK_THAT(rows[3], Catch::EndsWith("accepted"));
 }
 
+TEST_CASE("rgbdvo run reads colour images other than PNG with OpenCV's codecs, loaded then") {
+  // The program does not link OpenCV's codecs (src/io/opencv_codecs.cpp): a JPEG recording is
+  // what loads them.
+  const std::string dir = SyntheticFolder();
+  std::ifstream list_in(dir + "/rgb.txt");
+  std::stringstream list;
+  for (std::string line; std::getline(list_in, line);) {
+    const size_t png = line.find(".png");
+    if (line.empty() || line[0] == '#' || png == std::string::npos) {
+      list << line << '\n';
+      continue;
+    }
+    const std::string name = line.substr(line.find(' ') + 1, png - line.find(' ') - 1);
+    REQUIRE(cv::imwrite(dir + "/" + name + ".jpg", cv::imread(dir + "/" + name + ".png"),
+                        {cv::IMWRITE_JPEG_QUALITY, 100}));
+    fs::remove(dir + "/" + name + ".png");
+    list << line.substr(0, png) << ".jpg\n";
+  }
+  list_in.close();
+  std::ofstream(dir + "/rgb.txt") << list.str();
+  const std::string csv = dir + "/t.csv";
+  int code = 0;
+  const std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --csv " + csv, &code);
+  INFO(out);
+  CHECK(code == 0);
+  const std::vector<std::string> rows = Lines(csv);
+  REQUIRE(rows.size() == 7);  // header + 6 frames
+  for (size_t i = 2; i < rows.size(); ++i) CHECK_THAT(rows[i], Catch::EndsWith("accepted"));
+}
+
 TEST_CASE("rgbdvo run: depth of the wrong size and an empty sequence are clear errors") {
   const std::string dir = SyntheticFolder();
   cv::imwrite(dir + "/depth/000001.png", cv::Mat(240, 320, CV_16UC1, cv::Scalar(5000)));

@@ -74,6 +74,8 @@ grep -qx "tum_fr3" <<<"$got" || fail "no calibration completion: got '$got'"
 cpack --config "$build/CPackConfig.cmake" -B "$tmp/package" >/dev/null
 deb=$(ls "$tmp"/package/rgbdvo_*.deb)
 dpkg-deb -f "$deb" Depends | grep -q "libopencv-core" || fail "Depends lacks OpenCV: $(dpkg-deb -f "$deb" Depends)"
+dpkg-deb -f "$deb" Depends | grep -q "libopencv-imgcodecs" ||
+  fail "Depends lacks OpenCV's image codecs (loaded when needed): $(dpkg-deb -f "$deb" Depends)"
 dpkg-deb -x "$deb" "$tmp/root"
 "$tmp/root/usr/bin/rgbdvo" run "$recording" --calib tum_fr1 --tum "$tmp/deb.tum" >"$tmp/deb.log" 2>&1 ||
   { cat "$tmp/deb.log"; fail "the packaged rgbdvo run"; }
