@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <utility>
 
 #include "rgbdvo/features/sift/gaussian_blur.hpp"
 
@@ -50,12 +51,15 @@ bool ScaleSpace::Begin(const cv::Mat& gray) {
   if (gray.type() != CV_8UC1) throw std::invalid_argument("ScaleSpace: image must be CV_8UC1");
   const int up = options_.upsample ? 2 : 1;
   const int rows = gray.rows * up, cols = gray.cols * up;
+  octaves_.clear();
   if (std::min(rows, cols) < kMinSide) return false;
-  const int S = options_.octave_layers;
-  storage_.resize(static_cast<size_t>(2 * S + 5) * rows * cols);
+  // Room for every octave's 2S + 5 planes: the octaves halve while both sides keep kMinSide.
+  const size_t planes = 2 * static_cast<size_t>(options_.octave_layers) + 5;
+  size_t total = 0;
+  for (int r = rows, c = cols; std::min(r, c) >= kMinSide; r /= 2, c /= 2)
+    total += planes * static_cast<size_t>(r) * c;
+  storage_.resize(total);
 
-  octave_.index = options_.upsample ? -1 : 0;
-  octave_.shift = options_.upsample ? 0.25 : 0.0;
   cv::Mat level0(rows, cols, CV_32F, storage_.data());
   gray.convertTo(scratch_, CV_32F);
   // The camera image has blur 0.5 (1 in the upsampled image); add what reaches sigma.
@@ -67,38 +71,39 @@ bool ScaleSpace::Begin(const cv::Mat& gray) {
   } else {
     Blur(scratch_, level0, add, options_.kernel_sigmas);
   }
-  Build(level0);
+  Build(options_.upsample ? -1 : 0, 0, rows, cols);
   return true;
 }
 
 bool ScaleSpace::Next() {
-  const cv::Mat& from = octave_.gauss[options_.octave_layers];  // blur 2 sigma: sigma at half size
+  const cv::Mat& from = octave().gauss[options_.octave_layers];  // blur 2 sigma: sigma at half size
   const int rows = from.rows / 2, cols = from.cols / 2;
   if (std::min(rows, cols) < kMinSide) return false;
-  // The new level 0 occupies the start of storage_, below the old level S: no overlap.
-  cv::Mat level0(rows, cols, CV_32F, storage_.data());
+  cv::Mat level0(rows, cols, CV_32F, storage_.data() + next_offset_);
   for (int y = 0; y < rows; ++y) {
     const float* src = from.ptr<float>(2 * y);
     float* dst = level0.ptr<float>(y);
     for (int x = 0; x < cols; ++x) dst[x] = src[2 * x];
   }
-  ++octave_.index;
-  Build(level0);
+  Build(octave().index + 1, next_offset_, rows, cols);
   return true;
 }
 
-void ScaleSpace::Build(const cv::Mat& level0) {
-  const int S = options_.octave_layers, rows = level0.rows, cols = level0.cols;
+void ScaleSpace::Build(int index, size_t offset, int rows, int cols) {
+  const int S = options_.octave_layers;
   const size_t plane = static_cast<size_t>(rows) * cols;
-  octave_.gauss.resize(S + 3);
-  octave_.dog.resize(S + 2);
-  for (int i = 0; i < S + 3; ++i)
-    octave_.gauss[i] = cv::Mat(rows, cols, CV_32F, storage_.data() + i * plane);
-  for (int i = 0; i < S + 2; ++i)
-    octave_.dog[i] = cv::Mat(rows, cols, CV_32F, storage_.data() + (S + 3 + i) * plane);
+  Octave o;
+  o.index = index;
+  o.shift = options_.upsample ? 0.25 : 0.0;
+  float* at = storage_.data() + offset;
+  o.gauss.resize(S + 3);
+  o.dog.resize(S + 2);
+  for (int i = 0; i < S + 3; ++i) o.gauss[i] = cv::Mat(rows, cols, CV_32F, at + i * plane);
+  for (int i = 0; i < S + 2; ++i) o.dog[i] = cv::Mat(rows, cols, CV_32F, at + (S + 3 + i) * plane);
   for (int i = 1; i < S + 3; ++i)
-    Blur(octave_.gauss[i - 1], octave_.gauss[i], level_sigmas_[i], options_.kernel_sigmas,
-         &octave_.dog[i - 1]);
+    Blur(o.gauss[i - 1], o.gauss[i], level_sigmas_[i], options_.kernel_sigmas, &o.dog[i - 1]);
+  next_offset_ = offset + (2 * static_cast<size_t>(S) + 5) * plane;
+  octaves_.push_back(std::move(o));
 }
 
 }  // namespace rgbdvo

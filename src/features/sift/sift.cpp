@@ -134,33 +134,58 @@ Sift::Sift(const SiftOptions& options) : options_(options), scale_space_(options
 void Sift::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
                              cv::Mat* descriptors) {
   keypoints->clear();
-  descriptors_.clear();
+  found_.clear();
+  extrema_.clear();
   for (bool more = scale_space_.Begin(gray); more; more = scale_space_.Next())
-    SearchOctave(scale_space_.octave(), keypoints);
-
-  int n = static_cast<int>(keypoints->size());
-  std::vector<int> keep(n);
-  std::iota(keep.begin(), keep.end(), 0);
-  if (options_.max_features > 0 && n > options_.max_features) {
-    // The strongest responses, ties by detection order, kept in detection order.
-    std::stable_sort(keep.begin(), keep.end(), [&](int a, int b) {
-      return (*keypoints)[a].response > (*keypoints)[b].response;
-    });
-    keep.resize(options_.max_features);
-    std::sort(keep.begin(), keep.end());
-    std::vector<cv::KeyPoint> kept;
-    kept.reserve(keep.size());
-    for (int i : keep) kept.push_back((*keypoints)[i]);
-    keypoints->swap(kept);
-    n = options_.max_features;
+    SearchOctave(static_cast<int>(scale_space_.octaves().size()) - 1);
+  if (options_.max_features > 0) {
+    OrientStrongest(keypoints);
+  } else {
+    for (const auto& [octave, e] : extrema_) Orient(octave, e, keypoints);
   }
-  descriptors->create(n, kSiftDescriptorSize, CV_8U);
-  for (int r = 0; r < n; ++r)
-    std::copy_n(descriptors_.data() + static_cast<size_t>(keep[r]) * kSiftDescriptorSize,
-                kSiftDescriptorSize, descriptors->ptr<uint8_t>(r));
+  descriptors->create(static_cast<int>(keypoints->size()), kSiftDescriptorSize, CV_8U);
+  for (size_t i = 0; i < found_.size(); ++i) {
+    const Found& f = found_[i];
+    SiftDescriptor(scale_space_.octaves()[f.octave].gauss[f.layer], f.x, f.y, f.scale,
+                   (*keypoints)[i].angle, descriptors->ptr<uint8_t>(static_cast<int>(i)));
+  }
 }
 
-void Sift::SearchOctave(const Octave& o, std::vector<cv::KeyPoint>* keypoints) {
+void Sift::OrientStrongest(std::vector<cv::KeyPoint>* keypoints) {
+  // Extrema from the strongest, ties in detection order, until max_features keypoints: the
+  // strongest keypoints of all (an extremum's keypoints share its response), but only those
+  // oriented. Then back to detection order (by extremum, then orientation).
+  const size_t limit = static_cast<size_t>(options_.max_features);
+  std::vector<size_t> order(extrema_.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return extrema_[a].second.response > extrema_[b].second.response;
+  });
+  std::vector<size_t> source;  // the extremum of each keypoint
+  for (size_t i : order) {
+    if (keypoints->size() >= limit) break;
+    Orient(extrema_[i].first, extrema_[i].second, keypoints);
+    source.resize(keypoints->size(), i);
+  }
+  const size_t n = std::min(limit, keypoints->size());
+  std::vector<size_t> kept(n);
+  std::iota(kept.begin(), kept.end(), 0);
+  std::stable_sort(kept.begin(), kept.end(),
+                   [&](size_t a, size_t b) { return source[a] < source[b]; });
+  std::vector<cv::KeyPoint> kps;
+  std::vector<Found> found;
+  kps.reserve(n);
+  found.reserve(n);
+  for (size_t k : kept) {
+    kps.push_back((*keypoints)[k]);
+    found.push_back(found_[k]);
+  }
+  keypoints->swap(kps);
+  found_.swap(found);
+}
+
+void Sift::SearchOctave(int index) {
+  const Octave& o = scale_space_.octaves()[index];
   const int S = options_.scale_space.octave_layers;
   const int rows = o.dog[0].rows, cols = o.dog[0].cols;
   if (rows <= 2 * kBorder || cols <= 2 * kBorder) return;
@@ -198,14 +223,15 @@ void Sift::SearchOctave(const Octave& o, std::vector<cv::KeyPoint>* keypoints) {
           // such duplicates too; a duplicate would fail every ratio test it takes part in).
           if (!refined_.insert((static_cast<int64_t>(e.layer) * rows + e.y) * cols + e.x).second)
             continue;
-          Describe(o, e, keypoints);
+          extrema_.emplace_back(index, e);
         }
       }
     }
 }
 
-void Sift::Describe(const Octave& o, const Extremum& e, std::vector<cv::KeyPoint>* keypoints) {
+void Sift::Orient(int index, const Extremum& e, std::vector<cv::KeyPoint>* keypoints) {
   // Scale in octave pixels, and the orientations (Lowe section 5).
+  const Octave& o = scale_space_.octaves()[index];
   const int S = options_.scale_space.octave_layers;
   const float scale =
       static_cast<float>(options_.scale_space.sigma) * std::exp2((e.layer + e.ds) / S);
@@ -230,9 +256,7 @@ void Sift::Describe(const Octave& o, const Extremum& e, std::vector<cv::KeyPoint
     k.angle = 360.0f - 10.0f * bin;
     if (std::abs(k.angle - 360.0f) < 1e-4f) k.angle = 0;
     keypoints->push_back(k);
-    descriptors_.resize(descriptors_.size() + kSiftDescriptorSize);
-    SiftDescriptor(level, px, py, scale, k.angle,
-                   descriptors_.data() + descriptors_.size() - kSiftDescriptorSize);
+    found_.push_back({index, e.layer, px, py, scale});
   }
 }
 

@@ -77,6 +77,28 @@ TEST_CASE("ScaleSpace octaves halve until they are too small, with their pixel p
   CHECK_FALSE(ScaleSpace(native).Begin(cv::Mat(8, 100, CV_8U, cv::Scalar(0))));
 }
 
+TEST_CASE("ScaleSpace keeps every octave of an image until the next image") {
+  cv::Mat image(120, 160, CV_8U);
+  cv::RNG(5).fill(image, cv::RNG::UNIFORM, 0, 256);
+  ScaleSpaceOptions native;
+  native.upsample = false;
+  ScaleSpace space(native);
+  REQUIRE(space.Begin(image));
+  std::vector<cv::Mat> first;  // each octave's levels as built
+  do {
+    for (const cv::Mat& m : space.octave().gauss) first.push_back(m.clone());
+    for (const cv::Mat& m : space.octave().dog) first.push_back(m.clone());
+  } while (space.Next());
+  REQUIRE(space.octaves().size() == 4);  // 160x120, 80x60, 40x30, 20x15
+  size_t k = 0;
+  for (const Octave& o : space.octaves()) {
+    for (const cv::Mat& m : o.gauss) CHECK(cv::norm(m, first[k++], cv::NORM_INF) == 0);
+    for (const cv::Mat& m : o.dog) CHECK(cv::norm(m, first[k++], cv::NORM_INF) == 0);
+  }
+  REQUIRE(space.Begin(image));  // a new image starts over
+  CHECK(space.octaves().size() == 1);
+}
+
 TEST_CASE("ScaleSpace checks its input and options") {
   ScaleSpace space({});
   CHECK_THROWS_WITH(space.Begin(cv::Mat(100, 100, CV_32F)), Catch::Contains("CV_8UC1"));

@@ -1,6 +1,8 @@
 #pragma once
 // The Gaussian and difference-of-Gaussian scale space of SIFT (Lowe 2004, section 3), built one
-// octave at a time into buffers that are reused from octave to octave and from image to image.
+// octave at a time into buffers that are reused from image to image. Every octave of an image
+// stays until the next image (a third more memory than the first octave alone), so that
+// keypoints can be described after all octaves are searched.
 
 #include <cmath>
 #include <opencv2/core.hpp>
@@ -41,15 +43,19 @@ class ScaleSpace {
   bool Begin(const cv::Mat& gray);
   // Builds the next octave (half the size) from the current one; false when it would be too small.
   bool Next();
-  const Octave& octave() const { return octave_; }
+  const Octave& octave() const { return octaves_.back(); }  // the one built last
+  // Every octave built since Begin, the first one first.
+  const std::vector<Octave>& octaves() const { return octaves_; }
 
  private:
-  void Build(const cv::Mat& base);  // fills octave_ from a base already blurred to sigma
+  // Appends the octave whose level 0 (already blurred to sigma) is at storage_[offset].
+  void Build(int index, size_t offset, int rows, int cols);
   ScaleSpaceOptions options_;
   std::vector<double> level_sigmas_;  // incremental blur from level i - 1 to level i
-  std::vector<float> storage_;        // every level of the current octave, reused
+  std::vector<float> storage_;        // every level of every octave, reused from image to image
+  size_t next_offset_ = 0;            // where in storage_ the next octave goes
   cv::Mat base_, scratch_;
-  Octave octave_;
+  std::vector<Octave> octaves_;
 };
 
 }  // namespace rgbdvo

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "rgbdvo/features/sift/scale_space.hpp"
@@ -18,7 +19,9 @@ struct SiftOptions {
   ScaleSpaceOptions scale_space;     // octave_layers, sigma, upsample (Lowe's octave -1)
   double contrast_threshold = 0.04;  // |DoG| at the extremum, x S / 255 (Lowe/OpenCV: 0.04)
   double edge_threshold = 10.0;      // principal curvature ratio r (Lowe section 4.1: 10)
-  int max_features = 0;              // keep the N largest responses, 0 = all
+  // Keep the N largest responses, 0 = all. Only those N get orientations and descriptors (most
+  // of a keypoint's cost), so a limit also bounds the time a frame takes.
+  int max_features = 0;
   void Check() const;
 };
 
@@ -40,17 +43,26 @@ class Sift {
                          cv::Mat* descriptors);
 
  private:
-  // Finds the extrema of one octave and describes them.
-  void SearchOctave(const Octave& octave, std::vector<cv::KeyPoint>* keypoints);
-  // Orientations (Lowe section 5) and a keypoint with its descriptor for each.
-  void Describe(const Octave& octave, const Extremum& e, std::vector<cv::KeyPoint>* keypoints);
+  // A keypoint found, before its descriptor: where to compute it.
+  struct Found {
+    int octave;  // index in the scale space's octaves()
+    int layer;
+    float x, y, scale;  // octave pixels
+  };
+  // Appends the extrema of octave `index` to extrema_.
+  void SearchOctave(int index);
+  // Orientations (Lowe section 5): a keypoint for each peak, appended to keypoints and found_.
+  void Orient(int octave, const Extremum& e, std::vector<cv::KeyPoint>* keypoints);
+  // With max_features: orients the strongest extrema and keeps the strongest keypoints.
+  void OrientStrongest(std::vector<cv::KeyPoint>* keypoints);
 
   SiftOptions options_;
   ScaleSpace scale_space_;
-  std::vector<float> row_buffers_;       // running maxima/minima of the extremum search
-  std::vector<uint8_t> flags_;           // extremum candidates of one row
-  std::unordered_set<int64_t> refined_;  // refined extrema of the octave (layer, y, x)
-  std::vector<uint8_t> descriptors_;     // 128 bytes per keypoint, before the cv::Mat
+  std::vector<float> row_buffers_;                 // running maxima/minima of the extremum search
+  std::vector<uint8_t> flags_;                     // extremum candidates of one row
+  std::unordered_set<int64_t> refined_;            // refined extrema of the octave (layer, y, x)
+  std::vector<std::pair<int, Extremum>> extrema_;  // of the image, with their octave's index
+  std::vector<Found> found_;  // one per keypoint, in the order of the keypoints
 };
 
 }  // namespace rgbdvo
