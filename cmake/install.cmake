@@ -67,7 +67,7 @@ set(CPACK_PACKAGE_DESCRIPTION "SIFT features matched between frames, lifted to 3
 image, RANSAC over 4-match hypotheses and a robust refinement (Fiala & Ufkes 2011, and beyond). \
 Runs on TUM RGB-D and fakenect recordings or live from a Kinect v1, and evaluates ATE and RPE. \
 Also holds the static library, its headers and CMake package (building against them needs the \
--dev packages of OpenCV, Eigen, libdeflate and libfreenect).")
+-dev packages of OpenCV, Eigen, ISA-L and libfreenect).")
 set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)

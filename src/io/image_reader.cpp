@@ -1,6 +1,7 @@
 #include "rgbdvo/io/image_reader.hpp"
 
-#include <libdeflate.h>
+#include <isa-l/crc.h>
+#include <isa-l/igzip_lib.h>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -170,7 +171,7 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
     if (bytes.size() - pos - 12 < len) return truncated();
     const uint8_t* type = &bytes[pos + 4];
     const uint8_t* data = type + 4;
-    if (libdeflate_crc32(0, type, len + 4) != BigEndian32(data + len))
+    if (crc32_gzip_refl(0, type, len + 4) != BigEndian32(data + len))
       return Fail("chunk CRC mismatch");
     const std::string name(reinterpret_cast<const char*>(type), 4);
     for (const char ch : name)
@@ -222,8 +223,8 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
     return Fail("bit depth / colour type not handled");
   }
 
-  // Inflate the concatenated IDAT data: a zlib stream (RFC 1950) whose Adler-32 libdeflate
-  // checks, which must fill exactly height lines of one filter byte plus the samples.
+  // Inflate the concatenated IDAT data: a zlib stream (RFC 1950) whose Adler-32 ISA-L checks,
+  // which must fill exactly height lines of one filter byte plus the samples.
   const size_t bpp = static_cast<size_t>(channels_in) * (bit_depth / 8);
   const size_t line = size_t{width} * bpp;
   // Deflate expands at most 1032:1 (RFC 1951: a 258-byte match per 2 bits at best), so data this
@@ -241,14 +242,19 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
     zdata = joined.data();
   }
   raw.resize(size_t{height} * (line + 1) + 16);  // padding for SubVector's last load
-  thread_local std::unique_ptr<libdeflate_decompressor, void (*)(libdeflate_decompressor*)>
-      inflater(libdeflate_alloc_decompressor(), libdeflate_free_decompressor);
-  if (!inflater) return Fail("libdeflate_alloc_decompressor failed");
-  size_t consumed = 0;
-  const libdeflate_result z = libdeflate_zlib_decompress_ex(
-      inflater.get(), zdata, idat_total, raw.data(), raw.size() - 16, &consumed, nullptr);
-  if (z != LIBDEFLATE_SUCCESS) return Fail("zlib stream corrupt or of the wrong size");
-  if (consumed != idat_total) return Fail("data after the end of the zlib stream");
+  const size_t expected = raw.size() - 16;
+  if (idat_total > UINT32_MAX || expected > UINT32_MAX) return Fail("IDAT data above 4 GiB");
+  thread_local inflate_state inflater;  // 85 KiB: not on the stack
+  isal_inflate_init(&inflater);
+  inflater.crc_flag = ISAL_ZLIB;                   // zlib header and Adler-32 checked
+  inflater.next_in = const_cast<uint8_t*>(zdata);  // only read
+  inflater.avail_in = static_cast<uint32_t>(idat_total);
+  inflater.next_out = raw.data();
+  inflater.avail_out = static_cast<uint32_t>(expected);
+  // ISAL_DECOMP_OK: the stream ended within the output; it must also have filled it exactly.
+  if (isal_inflate_stateless(&inflater) != ISAL_DECOMP_OK || inflater.total_out != expected)
+    return Fail("zlib stream corrupt or of the wrong size");
+  if (inflater.avail_in != 0) return Fail("data after the end of the zlib stream");
 
   PngDecodeResult r;
   r.image.create(static_cast<int>(height), static_cast<int>(width),

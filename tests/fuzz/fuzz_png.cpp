@@ -1,8 +1,8 @@
-// The PNG decoder (ours, on libdeflate) as cv::imread would be asked: colour and unchanged, and
-// the JPEG header reader. Each
-// input is decoded as it is and with every chunk's CRC made right, so that mutations also reach
-// the inflate, filter and sample code behind the CRC check.
-#include <libdeflate.h>
+// The PNG decoder (ours, on ISA-L's inflate) as cv::imread would be asked: colour and
+// unchanged, and the JPEG header reader. Each input is decoded as it is and with every chunk's
+// CRC made right, so that mutations also reach the inflate, filter and sample code behind the
+// CRC check.
+#include <isa-l/crc.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
@@ -32,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (size_t pos = 8; pos + 12 <= bytes.size();) {
     const uint32_t len = BigEndian32(&bytes[pos]);
     if (len > bytes.size() - pos - 12) break;
-    const uint32_t crc = libdeflate_crc32(0, &bytes[pos + 4], len + 4);
+    const uint32_t crc = crc32_gzip_refl(0, &bytes[pos + 4], len + 4);
     for (int k = 0; k < 4; ++k)
       bytes[pos + 8 + len + k] = static_cast<uint8_t>(crc >> (24 - 8 * k));
     pos += 12 + size_t{len};

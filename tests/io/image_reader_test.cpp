@@ -1,6 +1,7 @@
 #include "rgbdvo/io/image_reader.hpp"
 
-#include <libdeflate.h>
+#include <isa-l/crc.h>
+#include <isa-l/igzip_lib.h>
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -49,7 +50,38 @@ void PutChunk(std::vector<uint8_t>& out, const char* type, const std::vector<uin
   std::vector<uint8_t> body(type, type + 4);
   body.insert(body.end(), data.begin(), data.end());
   out.insert(out.end(), body.begin(), body.end());
-  PutBigEndian32(out, libdeflate_crc32(0, body.data(), body.size()));
+  PutBigEndian32(out, crc32_gzip_refl(0, body.data(), body.size()));
+}
+
+// `data` as a zlib stream (RFC 1950), compressed by ISA-L.
+std::vector<uint8_t> Zlib(std::vector<uint8_t> data) {
+  isal_zstream z;
+  isal_deflate_stateless_init(&z);
+  std::vector<uint8_t> out(data.size() + data.size() / 4 + 1024);
+  z.gzip_flag = IGZIP_ZLIB;
+  z.end_of_stream = 1;
+  z.next_in = data.data();
+  z.avail_in = static_cast<uint32_t>(data.size());
+  z.next_out = out.data();
+  z.avail_out = static_cast<uint32_t>(out.size());
+  REQUIRE(isal_deflate_stateless(&z) == COMP_OK);
+  out.resize(z.total_out);
+  return out;
+}
+
+// A PNG of IHDR, the zlib stream in two IDAT chunks (as libpng writes long streams) and IEND.
+std::vector<uint8_t> PngOf(int width, int height, int bit_depth, int colour_type,
+                           const std::vector<uint8_t>& zdata) {
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'}, ihdr;
+  PutBigEndian32(ihdr, width);
+  PutBigEndian32(ihdr, height);
+  ihdr.insert(ihdr.end(), {uint8_t(bit_depth), uint8_t(colour_type), 0, 0, 0});
+  PutChunk(png, "IHDR", ihdr);
+  const size_t half = zdata.size() / 2;
+  PutChunk(png, "IDAT", std::vector<uint8_t>(zdata.begin(), zdata.begin() + half));
+  PutChunk(png, "IDAT", std::vector<uint8_t>(zdata.begin() + half, zdata.end()));
+  PutChunk(png, "IEND", {});
+  return png;
 }
 
 // A PNG whose line y is filtered with type y % 5 (PNG spec 1.2 section 6), written by hand
@@ -72,21 +104,7 @@ std::vector<uint8_t> HandMadePng(const std::vector<uint8_t>& samples, int width,
       filtered.push_back(static_cast<uint8_t>(cur[i] - pred[type]));
     }
   }
-  libdeflate_compressor* z = libdeflate_alloc_compressor(6);
-  std::vector<uint8_t> zdata(libdeflate_zlib_compress_bound(z, filtered.size()));
-  zdata.resize(
-      libdeflate_zlib_compress(z, filtered.data(), filtered.size(), zdata.data(), zdata.size()));
-  libdeflate_free_compressor(z);
-  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'}, ihdr;
-  PutBigEndian32(ihdr, width);
-  PutBigEndian32(ihdr, height);
-  ihdr.insert(ihdr.end(), {uint8_t(bit_depth), uint8_t(colour_type), 0, 0, 0});
-  PutChunk(png, "IHDR", ihdr);
-  const size_t half = zdata.size() / 2;  // two IDAT chunks, as libpng writes long streams
-  PutChunk(png, "IDAT", std::vector<uint8_t>(zdata.begin(), zdata.begin() + half));
-  PutChunk(png, "IDAT", std::vector<uint8_t>(zdata.begin() + half, zdata.end()));
-  PutChunk(png, "IEND", {});
-  return png;
+  return PngOf(width, height, bit_depth, colour_type, Zlib(filtered));
 }
 
 }  // namespace
@@ -186,18 +204,41 @@ TEST_CASE("DecodePng leaves corrupt PNGs to cv::imread and refuses truncated one
   CHECK(ReadImage(dir + "/missing.png", cv::IMREAD_COLOR).empty());
 }
 
-TEST_CASE("DecodePng rejects a zlib stream that does not fill the image exactly") {
+TEST_CASE("DecodePng rejects a zlib stream that does not fill the image exactly or is corrupt") {
   std::vector<uint8_t> samples(4 * 3 * 3, 50);
   std::vector<uint8_t> png = HandMadePng(samples, 4, 3, 8, 2, 3);
   CHECK(DecodePng(png, cv::IMREAD_COLOR).success);
   // IHDR claims 4 x 3 but the stream holds only 2 lines (IHDR's CRC recomputed).
   std::vector<uint8_t> short_png = HandMadePng(std::vector<uint8_t>(4 * 2 * 3, 50), 4, 2, 8, 2, 3);
   short_png[8 + 8 + 7] = 3;  // height byte of IHDR
-  const uint32_t crc = libdeflate_crc32(0, &short_png[12], 17);
+  const uint32_t crc = crc32_gzip_refl(0, &short_png[12], 17);
   for (int i = 0; i < 4; ++i) short_png[29 + i] = static_cast<uint8_t>(crc >> (24 - 8 * i));
   const PngDecodeResult r = DecodePng(short_png, cv::IMREAD_COLOR);
   CHECK_FALSE(r.success);
   CHECK(r.reason == "zlib stream corrupt or of the wrong size");
+
+  // 4 x 3 RGB, unfiltered: 3 lines of a filter byte and 12 samples.
+  std::vector<uint8_t> lines;
+  for (int y = 0; y < 3; ++y) {
+    lines.push_back(0);
+    for (int i = 0; i < 12; ++i) lines.push_back(static_cast<uint8_t>(20 * y + i));
+  }
+  REQUIRE(DecodePng(PngOf(4, 3, 8, 2, Zlib(lines)), cv::IMREAD_COLOR).success);
+  // A stream holding a line more than the image.
+  std::vector<uint8_t> more = lines;
+  more.insert(more.end(), lines.begin(), lines.begin() + 13);
+  CHECK(DecodePng(PngOf(4, 3, 8, 2, Zlib(more)), cv::IMREAD_COLOR).reason ==
+        "zlib stream corrupt or of the wrong size");
+  // A wrong Adler-32 at the stream's end (the chunks' CRCs are right).
+  std::vector<uint8_t> wrong_sum = Zlib(lines);
+  wrong_sum.back() ^= 1;
+  CHECK(DecodePng(PngOf(4, 3, 8, 2, wrong_sum), cv::IMREAD_COLOR).reason ==
+        "zlib stream corrupt or of the wrong size");
+  // Bytes after the stream's end.
+  std::vector<uint8_t> trailing = Zlib(lines);
+  trailing.insert(trailing.end(), {1, 2, 3});
+  CHECK(DecodePng(PngOf(4, 3, 8, 2, trailing), cv::IMREAD_COLOR).reason ==
+        "data after the end of the zlib stream");
 }
 
 TEST_CASE("ReadImage refuses a PNG claiming more pixels than any sensor before allocating them") {
