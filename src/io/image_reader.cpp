@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <memory>
 #include <opencv2/imgcodecs.hpp>  // the IMREAD_ flags
 #include <optional>
 #include <stdexcept>

@@ -14,6 +14,7 @@
 
 #include "rgbdvo/evaluation/evaluation.hpp"
 #include "rgbdvo/io/trajectory_io.hpp"
+#include "rgbdvo/sources/tum_source.hpp"
 #include "rgbdvo/synthetic/synthetic.hpp"
 #include "test_support.hpp"
 
@@ -154,22 +155,16 @@ TEST_CASE("rgbdvo run reads colour images other than PNG with OpenCV's codecs, l
   // The program does not link OpenCV's codecs (src/io/opencv_codecs.cpp): a JPEG recording is
   // what loads them.
   const std::string dir = SyntheticFolder();
-  std::ifstream list_in(dir + "/rgb.txt");
-  std::stringstream list;
-  for (std::string line; std::getline(list_in, line);) {
-    const size_t png = line.find(".png");
-    if (line.empty() || line[0] == '#' || png == std::string::npos) {
-      list << line << '\n';
-      continue;
-    }
-    const std::string name = line.substr(line.find(' ') + 1, png - line.find(' ') - 1);
-    REQUIRE(cv::imwrite(dir + "/" + name + ".jpg", cv::imread(dir + "/" + name + ".png"),
+  for (const TumListEntry& e : ReadTumList(dir + "/rgb.txt")) {
+    const std::string png = dir + "/" + e.path;
+    REQUIRE(cv::imwrite(png.substr(0, png.size() - 4) + ".jpg", cv::imread(png),
                         {cv::IMWRITE_JPEG_QUALITY, 100}));
-    fs::remove(dir + "/" + name + ".png");
-    list << line.substr(0, png) << ".jpg\n";
+    fs::remove(png);
   }
-  list_in.close();
-  std::ofstream(dir + "/rgb.txt") << list.str();
+  std::string list = Slurp(dir + "/rgb.txt");
+  for (size_t at = list.find(".png"); at != std::string::npos; at = list.find(".png", at))
+    list.replace(at, 4, ".jpg");
+  std::ofstream(dir + "/rgb.txt") << list;
   const std::string csv = dir + "/t.csv";
   int code = 0;
   const std::string out = Run(dir + " --calib " + SyntheticCalib(dir) + " --csv " + csv, &code);
