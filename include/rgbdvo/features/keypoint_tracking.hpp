@@ -1,0 +1,55 @@
+#pragma once
+// Keypoints followed from one image into another by pyramidal Lucas-Kanade (OpenCV's): between
+// keyframes the keyframe's keypoints are tracked into each frame instead of SIFT being run and
+// matched there (OdometryOptions::track_between_keyframes, issue 20).
+
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+namespace rgbdvo {
+
+struct TrackOptions {
+  // The Lucas-Kanade window's side, pixels. A SIFT keypoint is the centre of a blob of about
+  // its scale (2-3 px at the finest); 9, 11 and 13 px track about equally well (the odometry's
+  // accuracy over the shared folders: docs/benchmarks.md), the cost grows with the area.
+  int window_px = 9;
+  // Pyramid levels above the image: each halves the motion the window has to catch (3: a
+  // prediction off by up to about 8 window sides is still caught).
+  int levels = 3;
+  // > 0: a track is kept only when tracking it back from where it landed returns within this
+  // distance of where it started, pixels (twice the work). 0: not checked; RANSAC and the
+  // refinement's inlier selection sort the tracks, and measured that is better: the check
+  // drops right tracks in motion blur (docs/benchmarks.md).
+  double max_back_error_px = 0;
+  // At most this many of the keyframe's keypoints (with a 3D point) are tracked: the strongest of
+  // each cell of an 8 x 8 grid in turn, so that they cover the image as the matches do.
+  int max_points = 400;
+  void Check() const;
+};
+
+// A CV_8UC1 copy of a BGR (as SIFT converts it) or grey image; throws std::invalid_argument on
+// an empty one.
+cv::Mat GreyImage(const cv::Mat& image);
+
+// The grey image's pyramid with its derivatives (cv::buildOpticalFlowPyramid), made once per
+// frame.
+using TrackingPyramid = std::vector<cv::Mat>;
+TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey);
+
+// Up to max_points indices of the keypoints with usable[i], spread over the image (size):
+// the image split into an 8 x 8 grid, the strongest remaining keypoint of each cell taken in
+// turn (by response, ties by index), cell by cell, until max_points or none are left.
+std::vector<int> SelectSpread(const std::vector<cv::KeyPoint>& keypoints,
+                              const std::vector<bool>& usable, cv::Size size, int max_points);
+
+// Each of `points` (pixels of `from`) tracked into `to`, starting from guess[i]: where it lies
+// in `to`, or nullopt when Lucas-Kanade lost it, it left the image, or (with
+// max_back_error_px) tracking it back from there lands farther than that from where it started.
+std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
+                                                    const TrackingPyramid& from,
+                                                    const TrackingPyramid& to,
+                                                    const std::vector<cv::Point2f>& points,
+                                                    const std::vector<cv::Point2f>& guess);
+
+}  // namespace rgbdvo
