@@ -41,6 +41,10 @@ void OdometryOptions::Check() const {
     throw std::invalid_argument(
         "OdometryOptions.floor must be depth, accelerometer or given, not '" + floor + "'");
   gravity.Check();
+  tracking.Check();
+  if (!(track_stale_noise_ratio == 0 || track_stale_noise_ratio >= 1))
+    throw std::invalid_argument(
+        "OdometryOptions.track_stale_noise_ratio must be >= 1 (or 0 = no such keyframes)");
   if (gravity_correction && motion == "planar")
     throw std::invalid_argument(
         "OdometryOptions.gravity_correction corrects roll and pitch, which motion planar holds "
@@ -127,6 +131,7 @@ Odometry::Odometry(const OdometryOptions& options, const Calibration& calib)
 }
 
 FrameResult Odometry::Process(const Frame& frame) {
+  if (ExtractsLazily()) return InColorCamera(Track(frame, std::nullopt));
   const Stopwatch t0;
   Features features = extractor_.Extract(frame.bgr);
   const double seconds = t0.Seconds();
@@ -136,11 +141,12 @@ FrameResult Odometry::Process(const Frame& frame) {
 }
 
 MotionEstimate Odometry::EstimateFromMatches(const Reference& ref, const Reference& cur,
+                                             const KeypointPoints& cur_points,
                                              const std::vector<cv::DMatch>& matches, FrameResult* r,
                                              std::vector<int>* match_of_pair) {
   r->matches = static_cast<int>(matches.size());
   Stopwatch t0;
-  const std::vector<PointPair> pairs = PairMatches(ref.points, cur.points, matches, match_of_pair);
+  const std::vector<PointPair> pairs = PairMatches(ref.points, cur_points, matches, match_of_pair);
   r->times.lifting += t0.Seconds();
   r->pairs = static_cast<int>(pairs.size());
 
@@ -156,6 +162,7 @@ MotionEstimate Odometry::EstimateFromMatches(const Reference& ref, const Referen
     const Rigid3d T =
         RefineMotion(options_.refine, f, pairs, ransac.inliers, ransac.prev_from_cur).prev_from_cur;
     const NoiseScale noise = EstimateNoiseScale(options_.refine, f, pairs, ransac.inliers, T);
+    estimate.pixel_noise = noise.pixel;
     const RefineOptions scaled = ScaleNoise(options_.refine, noise);
     std::optional<DepthPlaneTerm> dense;
     const auto add_depth_term = [&](const Rigid3d& at) {
@@ -245,7 +252,7 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
              : MatchFeatures(options_.matching, ref.features, cur.features);
   r->times.matching += t0.Seconds();
   std::vector<int> match_of_pair;
-  MotionEstimate motion = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
+  MotionEstimate motion = EstimateFromMatches(ref, cur, cur.points, matches, r, &match_of_pair);
   *reason = CheckMotion(options_.verify, motion);
   // Brute-force matching, timed and counted as a fallback.
   const auto match_all = [&] {
@@ -260,7 +267,7 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
     // The prior was wrong (or the guided matches too few): brute force, as without it.
     brute_forced = true;
     matches = match_all();
-    motion = EstimateFromMatches(ref, cur, matches, r, &match_of_pair);
+    motion = EstimateFromMatches(ref, cur, cur.points, matches, r, &match_of_pair);
     *reason = CheckMotion(options_.verify, motion);
   }
   r->prediction_error_px =
@@ -271,7 +278,7 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
   const auto replace_if_verified = [&](const std::vector<cv::DMatch>& other, size_t factor) {
     const int kept_matches = r->matches, kept_pairs = r->pairs, kept_inliers = r->inliers;
     std::vector<int> other_of_pair;
-    MotionEstimate estimate = EstimateFromMatches(ref, cur, other, r, &other_of_pair);
+    MotionEstimate estimate = EstimateFromMatches(ref, cur, cur.points, other, r, &other_of_pair);
     const bool verified = CheckMotion(options_.verify, estimate).empty();
     const int inliers = verified ? r->inliers : 0;
     if (verified && estimate.inliers.size() >= factor * motion.inliers.size()) {
@@ -314,8 +321,79 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
   return motion;
 }
 
+void Odometry::EnsureFeatures(Reference* ref, FrameResult* r) {
+  if (ref->has_features) return;
+  Stopwatch t0;
+  ref->features = extractor_.Extract(ref->grey);
+  r->times.features += t0.Seconds();
+  t0.Restart();
+  ref->points = LiftKeypointsAcrossTime(calib_, options_.lifting, ref->depth_m, ref->features,
+                                        ref->depth_from_cam);
+  r->times.lifting += t0.Seconds();
+  ref->has_features = true;
+}
+
+MotionEstimate Odometry::EstimateTracked(const Reference& cur, const Rigid3d& world_from_cur_pred,
+                                         FrameResult* r) {
+  Stopwatch t0;
+  if (key_.tracked.empty()) {
+    std::vector<bool> usable(key_.points.size());
+    for (size_t i = 0; i < usable.size(); ++i) usable[i] = key_.points[i].has_value();
+    key_.tracked = SelectSpread(key_.features.keypoints, usable, key_.grey.size(),
+                                options_.tracking.max_points);
+  }
+  // Each tracked keypoint starts where the motion prior puts it (where it was, without a
+  // prediction).
+  KeypointPoints key_points;
+  std::vector<cv::Point2f> from, guess;
+  for (int i : key_.tracked) {
+    key_points.push_back(key_.points[i]);
+    from.push_back(key_.features.keypoints[i].pt);
+  }
+  const std::vector<std::optional<Eigen::Vector2d>> predicted =
+      PredictKeypoints(calib_, key_points, world_from_cur_pred.inverse() * key_.world_from_cam);
+  for (size_t k = 0; k < from.size(); ++k)
+    guess.push_back(predicted[k] ? cv::Point2f(static_cast<float>(predicted[k]->x()),
+                                               static_cast<float>(predicted[k]->y()))
+                                 : from[k]);
+  const std::vector<std::optional<cv::Point2f>> landed =
+      TrackPoints(options_.tracking, key_.pyramid, cur.pyramid, from, guess);
+  // The tracks as matches: the keyframe's keypoint (queryIdx) and where it landed (trainIdx, a
+  // keypoint of the keyframe's size there).
+  Features moved;
+  std::vector<cv::DMatch> matches;
+  std::vector<size_t> track_of_match;
+  for (size_t k = 0; k < landed.size(); ++k) {
+    if (!landed[k]) continue;
+    cv::KeyPoint kp = key_.features.keypoints[key_.tracked[k]];
+    kp.pt = *landed[k];
+    matches.emplace_back(key_.tracked[k], static_cast<int>(moved.keypoints.size()), 0.0f);
+    moved.keypoints.push_back(kp);
+    track_of_match.push_back(k);
+  }
+  r->times.matching += t0.Seconds();
+  r->features = static_cast<int>(moved.size());
+  t0.Restart();
+  const KeypointPoints cur_points =
+      LiftKeypointsAcrossTime(calib_, options_.lifting, cur.depth_m, moved, cur.depth_from_cam);
+  r->times.lifting += t0.Seconds();
+  std::vector<int> match_of_pair;
+  MotionEstimate motion = EstimateFromMatches(key_, cur, cur_points, matches, r, &match_of_pair);
+  r->prediction_error_px.clear();
+  for (int p : motion.inliers) {
+    const size_t k = track_of_match[match_of_pair[p]];
+    if (predicted[k])
+      r->prediction_error_px.push_back(static_cast<float>(
+          (*predicted[k] - Eigen::Vector2d((*landed[k]).x, (*landed[k]).y)).norm()));
+  }
+  return motion;
+}
+
 FrameResult Odometry::Process(const Frame& frame, Features features) {
-  FrameResult r = Track(frame, std::move(features));
+  return InColorCamera(Track(frame, std::move(features)));
+}
+
+FrameResult Odometry::InColorCamera(FrameResult r) const {
   // ir_from_color = (I, c): colour0_from_colourk = ir_from_color^-1 * ir0_from_irk * ir_from_color.
   const Eigen::Vector3d c = ColorCenterInIr(calib_);
   if (c.isZero()) return r;
@@ -330,7 +408,7 @@ FrameResult Odometry::Process(const Frame& frame, Features features) {
   return r;
 }
 
-FrameResult Odometry::Track(const Frame& frame, Features features) {
+FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features) {
   FrameResult r;
   r.frame = frame.index;
   // The pose is the camera's at the colour image's time: the keypoints are seen then, and their
@@ -338,7 +416,7 @@ FrameResult Odometry::Track(const Frame& frame, Features features) {
   // frames can share one depth frame and its time.
   r.timestamp = frame.color_timestamp;
   r.depth_timestamp = frame.timestamp;
-  r.features = static_cast<int>(features.size());
+  r.features = features ? static_cast<int>(features->size()) : 0;
 
   // The motion prior: constant velocity from the last two accepted frames (none yet: zero),
   // timed by the colour images, where the keypoints are seen. (The depth images' times are
@@ -365,27 +443,44 @@ FrameResult Odometry::Track(const Frame& frame, Features features) {
 
   const Stopwatch t0;
   Reference cur;
-  cur.points =
-      LiftKeypointsAcrossTime(calib_, options_.lifting, frame.depth_m, features, depth_from_color);
-  cur.features = std::move(features);
+  if (features) {
+    cur.points = LiftKeypointsAcrossTime(calib_, options_.lifting, frame.depth_m, *features,
+                                         depth_from_color);
+    cur.features = std::move(*features);
+  } else {
+    cur.has_features = false;
+  }
   cur.frame = frame.index;
   cur.color_timestamp = frame.color_timestamp;
-  if (options_.depth_fallback || options_.depth_term_step > 0) cur.depth_m = frame.depth_m.clone();
+  if (options_.depth_fallback || options_.depth_term_step > 0 || options_.track_between_keyframes)
+    cur.depth_m = frame.depth_m.clone();
+  cur.depth_from_cam = depth_from_color;
   if (options_.depth_term_step > 0) {
     if (depth_rays_.size() != frame.depth_m.size())
       depth_rays_ = DepthRays(calib_, frame.depth_m.size());
-    cur.depth_from_cam = depth_from_color;
     cur.depth_points = SampleDepthPoints(depth_rays_, frame.depth_m, depth_from_color.inverse(),
                                          options_.depth_term_step);
   }
   r.times.lifting += t0.Seconds();
+  if (options_.track_between_keyframes) {
+    // What SIFT needs later, and the pyramid to track into (timed with matching, which the
+    // tracking replaces).
+    const Stopwatch t1;
+    cur.grey = GreyImage(frame.bgr);
+    cur.pyramid = MakeTrackingPyramid(options_.tracking, cur.grey);
+    r.times.matching += t1.Seconds();
+  }
 
   // A frame with fewer points than a verified motion needs inliers (no depth yet, as in the first
   // frames of a Kinect stream, a blank wall, a covered lens) cannot be matched by the frames
   // after it: it never becomes the reference.
-  const bool can_be_reference =
-      std::count_if(cur.points.begin(), cur.points.end(),
-                    [](const auto& p) { return p.has_value(); }) >= options_.verify.min_inliers;
+  const auto can_be_reference = [&] {
+    EnsureFeatures(&cur, &r);
+    r.features = static_cast<int>(cur.features.size());
+    return std::count_if(cur.points.begin(), cur.points.end(), [](const auto& p) {
+             return p.has_value();
+           }) >= options_.verify.min_inliers;
+  };
   // The first reference may also be a frame without such points whose depth image the depth
   // fallback can align the next frames with (a dark first colour image): readings on at least
   // half of it, the majority DepthAligner needs to agree.
@@ -395,7 +490,7 @@ FrameResult Odometry::Track(const Frame& frame, Features features) {
                              (frame.depth_m <= calib_.max_depth_m) & (frame.depth_m > 0);
     return 2 * static_cast<size_t>(cv::countNonZero(readings)) >= frame.depth_m.total();
   };
-  if (!started_ && !can_be_reference && !depth_to_align()) {
+  if (!started_ && !can_be_reference() && !depth_to_align()) {
     // No reference yet: reported at the origin, where the first reference will be; the next
     // frame is tried.
     r.reason = "reference_points<" + std::to_string(options_.verify.min_inliers);
@@ -412,10 +507,25 @@ FrameResult Odometry::Track(const Frame& frame, Features features) {
     return r;
   }
 
-  MotionEstimate motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
+  // Tracked from the keyframe first (track_between_keyframes); where that fails verification,
+  // SIFT matching as without tracking, and the frame becomes the next keyframe (the
+  // keyframe's tracks no longer carry the motion).
+  MotionEstimate motion;
+  bool tracked = false, track_failed = false;
+  if (options_.track_between_keyframes && key_.has_features) {
+    motion = EstimateTracked(cur, world_from_cur_pred, &r);
+    tracked = CheckMotion(options_.verify, motion).empty();
+    track_failed = !tracked;
+  }
   bool recovered = false;
-  if (!r.reason.empty() && last_.frame != key_.frame) {
+  if (!tracked) {
+    EnsureFeatures(&cur, &r);
+    r.features = static_cast<int>(cur.features.size());
+    motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
+  }
+  if (!tracked && !r.reason.empty() && last_.frame != key_.frame) {
     // The keyframe is out of reach: try the last accepted frame, which then becomes the keyframe.
+    EnsureFeatures(&last_, &r);
     std::string reason;
     MotionEstimate fallback = Estimate(last_, cur, world_from_cur_pred, &r, &reason);
     if (reason.empty()) {
@@ -427,21 +537,36 @@ FrameResult Odometry::Track(const Frame& frame, Features features) {
   }
 
   if (r.reason.empty()) {
+    if (key_.first_inliers < 0) key_.first_inliers = r.inliers;
+    bool new_keyframe =
+        track_failed || !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
+                          options_.keyframe_inlier_ratio > 0);
+    if (tracked && options_.track_stale_noise_ratio > 0) {
+      // The tracks' pixel noise grows as they go stale (fr1/xyz every 2nd frame, seed 42, by the
+      // keyframe's age 1 / 2 / 3 / 4 / 5 / 6+ frames: 1.08 / 1.13 / 1.18 / 1.30 / 1.66 / 2.28;
+      // docs/benchmarks.md).
+      if (key_.first_track_noise < 0)
+        key_.first_track_noise = motion.pixel_noise;
+      else if (motion.pixel_noise > options_.track_stale_noise_ratio * key_.first_track_noise)
+        new_keyframe = true;
+    }
+    if (new_keyframe) {
+      EnsureFeatures(&cur, &r);
+      r.features = static_cast<int>(cur.features.size());
+    }
     // world_from_cur = world_from_key * key_from_cur.
     cur.world_from_cam = key_.world_from_cam * motion.prev_from_cur;
     if (motion.unconstrained) {
       cur.world_from_cam_6dof = key_.world_from_cam_6dof * *motion.unconstrained;
       r.world_from_cam_6dof = cur.world_from_cam_6dof;
     }
-    if (key_.first_inliers < 0) key_.first_inliers = r.inliers;
-    const bool new_keyframe = !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
-                                options_.keyframe_inlier_ratio > 0);
     if (new_keyframe && options_.fuse_keyframe_pose && !recovered && last_.frame != key_.frame &&
         last_.pose_from_features) {
       // The frame's error will be in every pose after it: measure it again against the last
       // frame and average the two verified poses, each weighted by its inliers (an estimate's
       // variance goes as one over its inliers; the last frame's own error is left out). Mean
       // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md).
+      EnsureFeatures(&last_, &r);
       FrameResult again = r;
       std::string reason;
       const MotionEstimate from_last = Estimate(last_, cur, world_from_cur_pred, &again, &reason);
@@ -530,7 +655,7 @@ FrameResult Odometry::Track(const Frame& frame, Features features) {
   // No restart from a frame that cannot be the reference (can_be_reference): the next one is
   // tried.
   if (options_.max_rejected_run > 0 && ++rejected_run_ >= options_.max_rejected_run &&
-      can_be_reference) {
+      can_be_reference()) {
     // The references are out of reach: restart from this frame at the pose just reported.
     cur.world_from_cam = cur.world_from_cam_6dof = r.world_from_cam;
     key_ = last_ = std::move(cur);

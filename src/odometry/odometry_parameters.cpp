@@ -112,6 +112,23 @@ const std::vector<OdometryParameter> kParameters = {
      "a new keyframe's pose also from the last frame, the two averaged by their inliers "
      "(--no-keyframe-fusion: from the old keyframe alone)",
      [](O& o) -> ParameterRef { return &o.fuse_keyframe_pose; }},
+    {"tracking.enabled", "track",
+     "between keyframes, track the keyframe's keypoints (Lucas-Kanade) instead of running SIFT "
+     "and matching on every frame",
+     [](O& o) -> ParameterRef { return &o.track_between_keyframes; }},
+    {"tracking.window_px", "track-window", "tracking: Lucas-Kanade window side, px",
+     [](O& o) -> ParameterRef { return &o.tracking.window_px; }},
+    {"tracking.levels", "track-levels", "tracking: pyramid levels above the image",
+     [](O& o) -> ParameterRef { return &o.tracking.levels; }},
+    {"tracking.max_points", "track-points", "tracking: keyframe keypoints tracked, at most",
+     [](O& o) -> ParameterRef { return &o.tracking.max_points; }},
+    {"tracking.max_back_error_px", "track-back-error",
+     "tracking: keep a track when tracking it back lands within this, px (0 = not tracked back)",
+     [](O& o) -> ParameterRef { return &o.tracking.max_back_error_px; }},
+    {"tracking.stale_noise_ratio", "track-stale-noise",
+     "tracking: new keyframe when the tracks' pixel noise exceeds this times the first tracked "
+     "frame's (0 = not)",
+     [](O& o) -> ParameterRef { return &o.track_stale_noise_ratio; }},
     {"compensate_depth_delay", "depth-delay",
      "lift keypoints where the depth image saw them, moved over the colour-depth time offset "
      "(--no-depth-delay: at the keypoint's own pixel, the paper)",

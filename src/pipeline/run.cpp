@@ -26,7 +26,7 @@ namespace {
 // the source or the feature extraction).
 struct Decoded {
   std::optional<Frame> frame;
-  Features features;
+  std::optional<Features> features;  // none when the odometry extracts them itself
   double decode_seconds = 0, feature_seconds = 0;
   std::exception_ptr error;
 };
@@ -43,19 +43,19 @@ void ReadNext(FrameSource& source, Decoded* d) {
   }
 }
 
-// Extracts the features of d's frame, if any; never throws.
-void ExtractFeatures(const SiftExtractor& extractor, Decoded* d) {
-  if (!d->frame) return;
+// Extracts the features of d's frame, if any and with an extractor; never throws.
+void ExtractFeatures(const SiftExtractor* extractor, Decoded* d) {
+  if (!d->frame || !extractor) return;
   try {
     const Stopwatch t0;
-    d->features = extractor.Extract(d->frame->bgr);
+    d->features = extractor->Extract(d->frame->bgr);
     d->feature_seconds = t0.Seconds();
   } catch (...) {
     d->error = std::current_exception();
   }
 }
 
-Decoded DecodeNext(FrameSource& source, const SiftExtractor& extractor) {
+Decoded DecodeNext(FrameSource& source, const SiftExtractor* extractor) {
   Decoded d;
   ReadNext(source, &d);
   ExtractFeatures(extractor, &d);
@@ -71,7 +71,8 @@ Decoded DecodeNext(FrameSource& source, const SiftExtractor& extractor) {
 // destructor stops and joins the workers (also when the consumer throws).
 class FeatureWorkers {
  public:
-  FeatureWorkers(FrameSource& source, const SiftExtractor& extractor, int workers, int capacity)
+  // extractor: nullptr = decode only (the odometry runs SIFT where it needs it).
+  FeatureWorkers(FrameSource& source, const SiftExtractor* extractor, int workers, int capacity)
       : source_(source), extractor_(extractor), capacity_(capacity) {
     try {
       for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { Work(); });
@@ -137,7 +138,7 @@ class FeatureWorkers {
   }
 
   FrameSource& source_;
-  const SiftExtractor& extractor_;
+  const SiftExtractor* extractor_;
   const int64_t capacity_;
   std::mutex source_mutex_;  // serialises source_.Next()
   std::mutex mutex_;         // guards everything below
@@ -249,11 +250,12 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   TrackingGaps gaps;
   std::optional<PlanarityCheck> planarity;  // with the planar motion model
   std::optional<FeatureWorkers> workers;
+  const SiftExtractor* extractor = odometry.ExtractsLazily() ? nullptr : &odometry.extractor();
   if (summary.threads > 1)
-    workers.emplace(source, odometry.extractor(), summary.threads, options.EffectiveQueueFrames());
+    workers.emplace(source, extractor, summary.threads, options.EffectiveQueueFrames());
   for (;;) {
     double waited = 0;
-    Decoded d = workers ? workers->Next(&waited) : DecodeNext(source, odometry.extractor());
+    Decoded d = workers ? workers->Next(&waited) : DecodeNext(source, extractor);
     summary.wait_seconds += waited;
     if (d.error) std::rethrow_exception(d.error);
     summary.decode_seconds += d.decode_seconds;
@@ -265,8 +267,13 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
            {CheckDepthScale(depth, calib), CheckPrincipalPoint(calib, depth.cols, depth.rows)})
         if (w) on_warning("frame " + std::to_string(d.frame->index) + ": " + *w);
     }
-    FrameResult result = odometry.Process(*d.frame, std::move(d.features));
-    result.times.features = d.feature_seconds;
+    FrameResult result;
+    if (d.features) {
+      result = odometry.Process(*d.frame, std::move(*d.features));
+      result.times.features = d.feature_seconds;
+    } else {
+      result = odometry.Process(*d.frame);  // SIFT where needed, timed by the odometry
+    }
     const Stopwatch t0;
     for (TrajectoryWriter* w : writers) w->Write(result);
     summary.write_seconds += t0.Seconds();

@@ -810,3 +810,33 @@ TEST_CASE("Gravity: readings that say a still camera has rolled pull it and the 
   CHECK_THAT(odometry.GravityBrief(), Catch::Contains("40 frames with an accelerometer reading"));
   CHECK_THAT(odometry.MotionModelBrief(), Catch::Contains("roll and pitch pulled toward"));
 }
+
+TEST_CASE("Tracking between keyframes follows a synthetic path, SIFT on a part of the frames") {
+  // The same bounds as SIFT on every frame ("Odometry recovers a synthetic camera path"): the
+  // tracked pairs carry the frames between keyframes, SIFT runs on the keyframes, the frames
+  // before them (keyframe fusion) and where tracking fails.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(30, 0.02, 1.5);
+  OdometryOptions options;
+  options.track_between_keyframes = true;
+  Odometry odometry(options, CalibFor(cam));
+  REQUIRE(odometry.ExtractsLazily());
+  FrameResult last;
+  int sift_frames = 0;
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    last = odometry.Process(Render(scene, cam, path[i], i));
+    INFO("frame " << i << " " << last.StatusString() << " inliers " << last.inliers);
+    REQUIRE((last.status == FrameStatus::kAccepted || last.status == FrameStatus::kFirst));
+    CHECK(TranslationError(last.world_from_cam, path[i]) < 0.02);
+    if (last.times.features > 0) ++sift_frames;
+    if (last.times.features == 0) CHECK(last.features <= options.tracking.max_points);
+  }
+  INFO("SIFT on " << sift_frames << " of " << path.size() << " frames");
+  CHECK(sift_frames >= 2);
+  CHECK(sift_frames <= static_cast<int>(path.size()) / 2);
+  CHECK(RigidNear(last.world_from_cam, path.back(), 1.0, 0.02));
+  const OdometryOptions defaults;
+  CHECK(!defaults.track_between_keyframes);
+  CHECK(!PresetOptions("paper").track_between_keyframes);
+}

@@ -56,9 +56,10 @@ class Recorder : public TrajectoryWriter {
 };
 
 std::vector<FrameResult> RunWith(int threads, int n, int throw_at, std::string* error,
-                                 int empty_at = -1, int queue_frames = RunOptions{}.queue_frames) {
+                                 int empty_at = -1, int queue_frames = RunOptions{}.queue_frames,
+                                 const OdometryOptions& odometry_options = {}) {
   SyntheticSource source(n, throw_at, empty_at);
-  Odometry odometry(OdometryOptions{}, source.Calib());
+  Odometry odometry(odometry_options, source.Calib());
   Recorder recorder;
   RunOptions options;
   options.threads = threads;
@@ -93,6 +94,37 @@ TEST_CASE("Feature workers give the same results in the same order as one thread
         CHECK(many[i].world_from_cam.matrix() == one[i].world_from_cam.matrix());
       }
     }
+  }
+}
+
+TEST_CASE(
+    "With tracking between keyframes the workers only decode, and the results are one thread's") {
+  OdometryOptions tracking;
+  tracking.track_between_keyframes = true;
+  std::string error;
+  const std::vector<FrameResult> one = RunWith(1, 10, -1, &error, -1, 4, tracking);
+  REQUIRE(one.size() == 10);
+  const std::vector<FrameResult> two = RunWith(2, 10, -1, &error, -1, 4, tracking);
+  CHECK(error.empty());
+  REQUIRE(two.size() == one.size());
+  int without_sift = 0;
+  for (size_t i = 0; i < one.size(); ++i) {
+    INFO("frame " << i);
+    CHECK(two[i].status == one[i].status);
+    CHECK(two[i].features == one[i].features);
+    CHECK(two[i].inliers == one[i].inliers);
+    CHECK(two[i].world_from_cam.matrix() == one[i].world_from_cam.matrix());
+    // SIFT's time is the odometry's own, counted only where it ran.
+    CHECK((one[i].times.features == 0) == (two[i].times.features == 0));
+    if (one[i].times.features == 0) ++without_sift;
+  }
+  CHECK(without_sift > 0);
+  for (int threads : {1, 3}) {  // an empty colour image fails where the odometry reads it
+    INFO("threads " << threads);
+    std::string failed;
+    const std::vector<FrameResult> rows = RunWith(threads, 8, -1, &failed, 4, 4, tracking);
+    CHECK_THAT(failed, Catch::Contains("empty image"));
+    CHECK(rows.size() == 4);
   }
 }
 

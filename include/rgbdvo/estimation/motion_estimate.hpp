@@ -23,6 +23,9 @@ struct MotionEstimate {
   // With a constrained model (planar): the refinement of the final inliers with all 6 degrees
   // of freedom, started from the final motion, to check the constraint against.
   std::optional<Rigid3d> unconstrained;
+  // The pixel noise the refinement measured on RANSAC's inliers (EstimateNoiseScale: in units
+  // of RefineOptions::pixel_sigma, at least 1); 0 when the refinement did not run.
+  double pixel_noise = 0;
 
   // The estimate RANSAC alone gives (no refinement).
   static MotionEstimate FromRansac(RansacResult ransac);

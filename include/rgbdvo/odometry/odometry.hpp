@@ -14,6 +14,7 @@
 #include "rgbdvo/estimation/refine.hpp"
 #include "rgbdvo/features/features.hpp"
 #include "rgbdvo/features/guided_matching.hpp"
+#include "rgbdvo/features/keypoint_tracking.hpp"
 #include "rgbdvo/features/matching.hpp"
 #include "rgbdvo/geometry/geometry.hpp"
 #include "rgbdvo/geometry/motion_prior.hpp"
@@ -56,6 +57,21 @@ struct OdometryOptions {
   // frame, and the two verified poses are averaged, weighted by their inliers (rotation along
   // the geodesic). false = the estimate against the old keyframe alone.
   bool fuse_keyframe_pose = true;
+  // Between keyframes, the keyframe's keypoints are tracked into each frame (pyramidal
+  // Lucas-Kanade from where the motion prior puts them, TrackPoints) and the tracked pairs go
+  // through RANSAC, the refinement and verification as matches do; SIFT runs only where it is
+  // needed: on a frame that becomes a keyframe, on the frame before it (keyframe fusion), and
+  // where the tracked estimate fails verification (that frame is then matched as without
+  // tracking and becomes the keyframe: the tracks no longer carry the motion). A new keyframe
+  // also when the tracks go stale: the refinement's measured pixel noise on them
+  // (EstimateNoiseScale) above track_stale_noise_ratio times that of the keyframe's first
+  // tracked frame (a tracked window drifts as the view changes, which the inlier count does not
+  // show). 0.6-0.8 of the CPU; as accurate on the shared TUM recordings, less on unregistered
+  // depth and the synthetic robot (docs/benchmarks.md), so false = SIFT and matching on every
+  // frame, as the paper, is the default.
+  bool track_between_keyframes = false;
+  TrackOptions tracking;
+  double track_stale_noise_ratio = 1.2;
   // After this many rejected frames in a row the reference is given up: the current frame
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
@@ -200,6 +216,9 @@ class Odometry {
   FrameResult Process(const Frame& frame);
   // With features already extracted from frame.bgr (e.g. on another thread).
   FrameResult Process(const Frame& frame, Features features);
+  // True when Process(frame) runs SIFT only on the frames that need it
+  // (track_between_keyframes): features extracted ahead for every frame would be wasted.
+  bool ExtractsLazily() const { return options_.track_between_keyframes; }
   const SiftExtractor& extractor() const { return extractor_; }
   const OdometryOptions& options() const { return options_; }
   const Calibration& calibration() const { return calib_; }
@@ -213,21 +232,35 @@ class Odometry {
   std::string GravityBrief() const;
 
  private:
+  // r (from Track) moved to the colour camera.
+  FrameResult InColorCamera(FrameResult r) const;
   // Process in the IR camera's frame, where the tracking works: poses and velocity of the IR
   // camera. Process moves them to the colour camera.
-  FrameResult Track(const Frame& frame, Features features);
+  // features: nullopt when SIFT is to run only where needed (track_between_keyframes).
+  FrameResult Track(const Frame& frame, std::optional<Features> features);
 
   struct Reference {
     Features features;
     KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once
-    cv::Mat depth_m;        // the depth image, for the depth fallback and term (else empty)
+    // The depth image, for the depth fallback and term and for lifting later (else empty).
+    cv::Mat depth_m;
     Rigid3d depth_from_cam = Rigid3d::Identity();  // the depth camera at the depth image's time
     std::vector<Eigen::Vector3d> depth_points;     // SampleDepthPoints, in this camera
     Rigid3d world_from_cam = Rigid3d::Identity();
     Rigid3d world_from_cam_6dof = Rigid3d::Identity();  // planar model: the 6-DOF chain
     int frame = -1;
-    double color_timestamp = 0;      // seconds (Frame::color_timestamp)
-    int first_inliers = -1;          // inliers of the first frame matched against it
+    double color_timestamp = 0;  // seconds (Frame::color_timestamp)
+    int first_inliers = -1;      // inliers of the first frame matched against it
+    // With track_between_keyframes: SIFT is run on a frame only when it is needed
+    // (EnsureFeatures: from `grey`, lifted with depth_m); until then `features` and `points`
+    // are empty.
+    bool has_features = true;
+    cv::Mat grey;             // the grey colour image (GreyImage)
+    TrackingPyramid pyramid;  // the grey image's, to track keypoints from and into
+    // As a keyframe: the keypoints tracked into the next frames (SelectSpread; chosen at the
+    // first tracked frame), and the pixel noise measured on the first tracked frame's pairs.
+    std::vector<int> tracked;
+    double first_track_noise = -1;
     bool pose_from_features = true;  // else from the depth alignment
   };
   // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided
@@ -236,9 +269,17 @@ class Odometry {
   MotionEstimate Estimate(const Reference& ref, const Reference& cur,
                           const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
   // RANSAC and refinement on the 3D pairs of `matches`; match_of_pair as in PairMatches.
+  // cur_points: the 3D points of the matches' current keypoints (trainIdx).
   MotionEstimate EstimateFromMatches(const Reference& ref, const Reference& cur,
+                                     const KeypointPoints& cur_points,
                                      const std::vector<cv::DMatch>& matches, FrameResult* r,
                                      std::vector<int>* match_of_pair);
+  // With track_between_keyframes: the keyframe's keypoints tracked into cur, from where
+  // world_from_cur_pred puts them, and the motion from the tracked pairs (fills r's counts).
+  MotionEstimate EstimateTracked(const Reference& cur, const Rigid3d& world_from_cur_pred,
+                                 FrameResult* r);
+  // With track_between_keyframes: runs SIFT on ref and lifts its keypoints, once.
+  void EnsureFeatures(Reference* ref, FrameResult* r);
 
   // With the planar model: the level frame from the first frame's depth or the given mount
   // (throws std::runtime_error when the floor is not found).
