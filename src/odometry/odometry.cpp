@@ -474,9 +474,13 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
   // A frame with fewer points than a verified motion needs inliers (no depth yet, as in the first
   // frames of a Kinect stream, a blank wall, a covered lens) cannot be matched by the frames
   // after it: it never becomes the reference.
-  const auto can_be_reference = [&] {
+  // SIFT on the current frame where it was not run yet; the frame's count is then its keypoints.
+  const auto ensure_cur_features = [&] {
     EnsureFeatures(&cur, &r);
     r.features = static_cast<int>(cur.features.size());
+  };
+  const auto can_be_reference = [&] {
+    ensure_cur_features();
     return std::count_if(cur.points.begin(), cur.points.end(), [](const auto& p) {
              return p.has_value();
            }) >= options_.verify.min_inliers;
@@ -519,8 +523,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
   }
   bool recovered = false;
   if (!tracked) {
-    EnsureFeatures(&cur, &r);
-    r.features = static_cast<int>(cur.features.size());
+    ensure_cur_features();
     motion = Estimate(key_, cur, world_from_cur_pred, &r, &r.reason);
   }
   if (!tracked && !r.reason.empty() && last_.frame != key_.frame) {
@@ -550,10 +553,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       else if (motion.pixel_noise > options_.track_stale_noise_ratio * key_.first_track_noise)
         new_keyframe = true;
     }
-    if (new_keyframe) {
-      EnsureFeatures(&cur, &r);
-      r.features = static_cast<int>(cur.features.size());
-    }
+    if (new_keyframe) ensure_cur_features();
     // world_from_cur = world_from_key * key_from_cur.
     cur.world_from_cam = key_.world_from_cam * motion.prev_from_cur;
     if (motion.unconstrained) {
