@@ -840,3 +840,33 @@ TEST_CASE("Tracking between keyframes follows a synthetic path, SIFT on a part o
   CHECK(!defaults.track_between_keyframes);
   CHECK(!PresetOptions("paper").track_between_keyframes);
 }
+
+TEST_CASE("A keyframe reached by tracking takes its pose from SIFT matching") {
+  // With few tracked keypoints, a tracked estimate has at most that many inliers; a frame that
+  // becomes a keyframe is matched by SIFT against the old keyframe as without tracking, and its
+  // estimate (with more inliers than the tracks could give) is the one kept.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(30, 0.02, 1.5);
+  OdometryOptions options;
+  options.track_between_keyframes = true;
+  options.tracking.max_points = 30;
+  Odometry odometry(options, CalibFor(cam));
+  int tracked = 0, keyframes = 0;
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    const FrameResult r = odometry.Process(Render(scene, cam, path[i], i));
+    INFO("frame " << i << " " << r.StatusString() << " inliers " << r.inliers);
+    REQUIRE((r.status == FrameStatus::kAccepted || r.status == FrameStatus::kFirst));
+    if (r.status == FrameStatus::kFirst) continue;
+    CHECK(TranslationError(r.world_from_cam, path[i]) < 0.02);
+    if (r.times.features > 0) {  // SIFT ran: the frame became a keyframe
+      ++keyframes;
+      CHECK(r.inliers > options.tracking.max_points);
+    } else {
+      ++tracked;
+      CHECK(r.inliers <= options.tracking.max_points);
+    }
+  }
+  CHECK(keyframes >= 1);
+  CHECK(tracked >= 10);
+}

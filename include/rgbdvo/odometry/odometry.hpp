@@ -66,9 +66,10 @@ struct OdometryOptions {
   // also when the tracks go stale: the refinement's measured pixel noise on them
   // (EstimateNoiseScale) above track_stale_noise_ratio times that of the keyframe's first
   // tracked frame (a tracked window drifts as the view changes, which the inlier count does not
-  // show). 0.6-0.8 of the CPU; as accurate on the shared TUM recordings, less on unregistered
-  // depth and the synthetic robot (docs/benchmarks.md), so false = SIFT and matching on every
-  // frame, as the paper, is the default.
+  // show). A frame that becomes a keyframe takes its pose from SIFT matching against the old
+  // keyframe where that verifies. 0.6-0.8 of the CPU; as accurate on the shared TUM
+  // recordings, less on unregistered depth and the synthetic robot (docs/benchmarks.md), so
+  // false = SIFT and matching on every frame, as the paper, is the default.
   bool track_between_keyframes = false;
   TrackOptions tracking;
   double track_stale_noise_ratio = 1.2;
