@@ -326,6 +326,7 @@ void Odometry::EnsureFeatures(Reference* ref, FrameResult* r) {
   Stopwatch t0;
   ref->features = extractor_.Extract(ref->grey);
   r->times.features += t0.Seconds();
+  ++r->sift_runs;
   t0.Restart();
   ref->points = LiftKeypointsAcrossTime(calib_, options_.lifting, ref->depth_m, ref->features,
                                         ref->depth_from_cam);
@@ -520,6 +521,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
     motion = EstimateTracked(cur, world_from_cur_pred, &r);
     tracked = CheckMotion(options_.verify, motion).empty();
     track_failed = !tracked;
+    r.from_tracks = tracked;
   }
   bool recovered = false;
   if (!tracked) {
@@ -566,6 +568,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       if (reason.empty()) {
         motion = std::move(matched);
         r = std::move(again);
+        r.from_tracks = false;
       } else {
         r.times = again.times;
       }

@@ -205,6 +205,9 @@ std::string RunSummary::Matching() const {
     << " matched again around the estimate; prediction error of the inliers (px): p50 "
     << h.Quantile(0.5) << ", p90 " << h.Quantile(0.9) << ", p99 " << h.Quantile(0.99) << ", max "
     << h.max << " (" << h.n << " inliers)";
+  if (frames_from_tracks > 0 || sift_runs > 0)
+    s << "; tracking: " << frames_from_tracks << " of " << frames
+      << " frames from tracks, SIFT run " << sift_runs << " times";
   return s.str();
 }
 
@@ -315,6 +318,8 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     summary.fallbacks += result.fallbacks;
     if (result.fallbacks > 0) ++summary.frames_with_fallback;
     summary.rematches += result.rematches;
+    if (result.from_tracks) ++summary.frames_from_tracks;
+    summary.sift_runs += result.sift_runs;
     if (result.status == FrameStatus::kAccepted)
       for (float e : result.prediction_error_px) summary.prediction_error_px.Add(e);
     summary.seconds = start.Seconds();

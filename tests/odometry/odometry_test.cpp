@@ -831,6 +831,9 @@ TEST_CASE("Tracking between keyframes follows a synthetic path, SIFT on a part o
     CHECK(TranslationError(last.world_from_cam, path[i]) < 0.02);
     if (last.times.features > 0) ++sift_frames;
     if (last.times.features == 0) CHECK(last.features <= options.tracking.max_points);
+    // SIFT's time goes with its runs; a frame measured from tracks ran none.
+    CHECK((last.sift_runs > 0) == (last.times.features > 0));
+    if (last.from_tracks) CHECK(last.sift_runs == 0);
   }
   INFO("SIFT on " << sift_frames << " of " << path.size() << " frames");
   CHECK(sift_frames >= 2);
@@ -862,9 +865,11 @@ TEST_CASE("A keyframe reached by tracking takes its pose from SIFT matching") {
     if (r.times.features > 0) {  // SIFT ran: the frame became a keyframe
       ++keyframes;
       CHECK(r.inliers > options.tracking.max_points);
+      CHECK(!r.from_tracks);
     } else {
       ++tracked;
       CHECK(r.inliers <= options.tracking.max_points);
+      CHECK(r.from_tracks);
     }
   }
   CHECK(keyframes >= 1);

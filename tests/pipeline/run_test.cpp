@@ -57,7 +57,8 @@ class Recorder : public TrajectoryWriter {
 
 std::vector<FrameResult> RunWith(int threads, int n, int throw_at, std::string* error,
                                  int empty_at = -1, int queue_frames = RunOptions{}.queue_frames,
-                                 const OdometryOptions& odometry_options = {}) {
+                                 const OdometryOptions& odometry_options = {},
+                                 RunSummary* summary = nullptr) {
   SyntheticSource source(n, throw_at, empty_at);
   Odometry odometry(odometry_options, source.Calib());
   Recorder recorder;
@@ -68,6 +69,7 @@ std::vector<FrameResult> RunWith(int threads, int n, int throw_at, std::string* 
     const RunSummary s = RunOdometry(source, odometry, {&recorder}, {}, options);
     CHECK(s.threads == threads);
     CHECK(s.frames == static_cast<int>(recorder.rows.size()));
+    if (summary) *summary = s;
   } catch (const std::exception& e) {
     *error = e.what();
   }
@@ -78,8 +80,13 @@ std::vector<FrameResult> RunWith(int threads, int n, int throw_at, std::string* 
 
 TEST_CASE("Feature workers give the same results in the same order as one thread") {
   std::string error;
-  const std::vector<FrameResult> one = RunWith(1, 8, -1, &error);
+  RunSummary summary;
+  const std::vector<FrameResult> one = RunWith(1, 8, -1, &error, -1, 4, {}, &summary);
   REQUIRE(one.size() == 8);
+  // Features come with the frames: nothing tracked, no SIFT run by the odometry.
+  CHECK(summary.frames_from_tracks == 0);
+  CHECK(summary.sift_runs == 0);
+  CHECK_THAT(summary.Matching(), !Catch::Contains("tracking:"));
   for (int threads : {2, 3}) {
     for (int queue_frames : {1, 4}) {  // 1 is raised to the number of workers
       INFO("threads " << threads << ", queue_frames " << queue_frames);
@@ -102,7 +109,8 @@ TEST_CASE(
   OdometryOptions tracking;
   tracking.track_between_keyframes = true;
   std::string error;
-  const std::vector<FrameResult> one = RunWith(1, 10, -1, &error, -1, 4, tracking);
+  RunSummary summary;
+  const std::vector<FrameResult> one = RunWith(1, 10, -1, &error, -1, 4, tracking, &summary);
   REQUIRE(one.size() == 10);
   const std::vector<FrameResult> two = RunWith(2, 10, -1, &error, -1, 4, tracking);
   CHECK(error.empty());
@@ -119,6 +127,18 @@ TEST_CASE(
     if (one[i].times.features == 0) ++without_sift;
   }
   CHECK(without_sift > 0);
+  // The summary counts what the odometry reported.
+  int from_tracks = 0, sift_runs = 0;
+  for (const FrameResult& r : one) {
+    from_tracks += r.from_tracks ? 1 : 0;
+    sift_runs += r.sift_runs;
+  }
+  CHECK(from_tracks > 0);
+  CHECK(summary.frames_from_tracks == from_tracks);
+  CHECK(summary.sift_runs == sift_runs);
+  CHECK_THAT(summary.Matching(), Catch::Contains("tracking: " + std::to_string(from_tracks) +
+                                                 " of 10 frames from tracks, SIFT run " +
+                                                 std::to_string(sift_runs) + " times"));
   for (int threads : {1, 3}) {  // an empty colour image fails where the odometry reads it
     INFO("threads " << threads);
     std::string failed;

@@ -193,6 +193,12 @@ struct FrameResult {
   int fallbacks = 0;
   // Estimates redone with guided matching around the first estimate (guided_rematch).
   int rematches = 0;
+  // With track_between_keyframes: the pose was measured from the keyframe's keypoints tracked
+  // into the frame (not from matches), and the SIFT extractions the odometry ran for the frame
+  // (its own, and a reference's for the keyframe fusion or a fallback). Without it features
+  // come with the frame: false and 0.
+  bool from_tracks = false;
+  int sift_runs = 0;
   // For each final inlier: the distance from where the motion prior predicted its reference
   // keypoint to the current keypoint it was matched with, colour pixels.
   std::vector<float> prediction_error_px;

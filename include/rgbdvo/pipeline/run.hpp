@@ -77,6 +77,10 @@ struct RunSummary {
   int fallbacks = 0;  // estimates redone with brute-force matching (FrameResult::fallbacks)
   int frames_with_fallback = 0;
   int rematches = 0;  // estimates redone around the first estimate (FrameResult::rematches)
+  // With tracking between keyframes (FrameResult::from_tracks, sift_runs): frames whose pose
+  // came from tracks, and SIFT extractions the odometry ran.
+  int frames_from_tracks = 0;
+  int sift_runs = 0;
   // Prediction error of the final inliers of accepted frames (FrameResult::prediction_error_px).
   ErrorHistogram prediction_error_px;
   // One line: frames, each status, the longest gap, mean inliers, fps (and the rows left out of
@@ -84,7 +88,7 @@ struct RunSummary {
   std::string Brief() const;
   std::string Timing() const;  // one line: milliseconds per frame for each stage
   // One line: brute-force fallbacks, estimates matched again and percentiles of the prediction
-  // error.
+  // error (and with tracking: frames from tracks, SIFT extractions).
   std::string Matching() const;
 };
 
