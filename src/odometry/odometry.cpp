@@ -555,6 +555,14 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       else if (motion.pixel_noise > options_.track_stale_noise_ratio * key_.first_track_noise)
         new_keyframe = true;
     }
+    // A second estimate of cur against ref, beside the kept one: its counts in *aside, its time
+    // added to the frame's.
+    const auto estimate_aside = [&](const Reference& ref, FrameResult* aside, std::string* reason) {
+      *aside = r;
+      MotionEstimate estimate = Estimate(ref, cur, world_from_cur_pred, aside, reason);
+      r.times = aside->times;
+      return estimate;
+    };
     if (new_keyframe) ensure_cur_features();
     if (new_keyframe && tracked) {
       // A keyframe's pose is in every pose after it: it is measured as without tracking, by
@@ -562,15 +570,13 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       // where it verifies. (The tracks' estimate drifts with their windows as the view changes,
       // which is why the keyframe is renewed. Synthetic robot, seeds 42 / 1, ATE 0.0110 /
       // 0.0127 -> 0.0067 / 0.0073 m; docs/benchmarks.md.)
-      FrameResult again = r;
+      FrameResult again;
       std::string reason;
-      MotionEstimate matched = Estimate(key_, cur, world_from_cur_pred, &again, &reason);
+      MotionEstimate matched = estimate_aside(key_, &again, &reason);
       if (reason.empty()) {
         motion = std::move(matched);
         r = std::move(again);
         r.from_tracks = false;
-      } else {
-        r.times = again.times;
       }
     }
     // world_from_cur = world_from_key * key_from_cur.
@@ -586,10 +592,9 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       // variance goes as one over its inliers; the last frame's own error is left out). Mean
       // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md).
       EnsureFeatures(&last_, &r);
-      FrameResult again = r;
+      FrameResult again;
       std::string reason;
-      const MotionEstimate from_last = Estimate(last_, cur, world_from_cur_pred, &again, &reason);
-      r.times = again.times;
+      const MotionEstimate from_last = estimate_aside(last_, &again, &reason);
       if (reason.empty()) {
         const double w = static_cast<double>(r.inliers) / (r.inliers + again.inliers);
         cur.world_from_cam =
