@@ -26,13 +26,19 @@ cv::Mat GreyImage(const cv::Mat& image) {
   return grey;
 }
 
-TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey) {
+TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey,
+                                    bool with_derivatives) {
   if (grey.type() != CV_8UC1)
     throw std::invalid_argument("tracking: the pyramid is made of a CV_8UC1 image");
   TrackingPyramid pyramid;
   cv::buildOpticalFlowPyramid(grey, pyramid, cv::Size(options.window_px, options.window_px),
-                              options.levels, /*withDerivatives=*/true);
+                              options.levels, with_derivatives);
   return pyramid;
+}
+
+bool HasDerivatives(const TrackingPyramid& pyramid) {
+  // With derivatives every level is followed by its 2-channel 16-bit Scharr gradients.
+  return pyramid.size() > 1 && pyramid[1].type() == CV_16SC2;
 }
 
 std::vector<int> SelectSpread(const std::vector<cv::KeyPoint>& keypoints,

@@ -343,6 +343,9 @@ MotionEstimate Odometry::EstimateTracked(const Reference& cur, const Rigid3d& wo
     key_.tracked = SelectSpread(key_.features.keypoints, usable, key_.grey.size(),
                                 options_.tracking.max_points);
   }
+  // The keyframe is tracked from: its pyramid gets the derivatives once.
+  if (!HasDerivatives(key_.pyramid))
+    key_.pyramid = MakeTrackingPyramid(options_.tracking, key_.grey, /*with_derivatives=*/true);
   // Each tracked keypoint starts where the motion prior puts it (where it was, without a
   // prediction).
   KeypointPoints key_points;
@@ -464,11 +467,11 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
   }
   r.times.lifting += t0.Seconds();
   if (options_.track_between_keyframes) {
-    // What SIFT needs later, and the pyramid to track into (timed with matching, which the
-    // tracking replaces).
+    // What SIFT needs later, and the pyramid to track into, without derivatives until the frame
+    // is tracked from (timed with matching, which the tracking replaces).
     const Stopwatch t1;
     cur.grey = GreyImage(frame.bgr);
-    cur.pyramid = MakeTrackingPyramid(options_.tracking, cur.grey);
+    cur.pyramid = MakeTrackingPyramid(options_.tracking, cur.grey, /*with_derivatives=*/false);
     r.times.matching += t1.Seconds();
   }
 

@@ -45,14 +45,24 @@ TEST_CASE("Tracked points land where the image moved them, from a guess several 
       points.emplace_back(static_cast<float>(x), static_cast<float>(y));
       guess.emplace_back(static_cast<float>(x + dx + 5), static_cast<float>(y + dy - 4));
     }
-  const std::vector<std::optional<cv::Point2f>> tracked = TrackPoints(
-      options, MakeTrackingPyramid(options, a), MakeTrackingPyramid(options, b), points, guess);
+  // As the odometry does: derivatives for the image tracked from only. Tracked into a pyramid
+  // with derivatives the points land at the same places.
+  const TrackingPyramid from = MakeTrackingPyramid(options, a, true);
+  const TrackingPyramid into = MakeTrackingPyramid(options, b, false);
+  CHECK(HasDerivatives(from));
+  CHECK(!HasDerivatives(into));
+  const std::vector<std::optional<cv::Point2f>> tracked =
+      TrackPoints(options, from, into, points, guess);
+  const std::vector<std::optional<cv::Point2f>> into_full =
+      TrackPoints(options, from, MakeTrackingPyramid(options, b, true), points, guess);
   REQUIRE(tracked.size() == points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     INFO("point " << points[i]);
     REQUIRE(tracked[i]);
     CHECK(std::abs(tracked[i]->x - (points[i].x + dx)) < 0.1);
     CHECK(std::abs(tracked[i]->y - (points[i].y + dy)) < 0.1);
+    REQUIRE(into_full[i]);
+    CHECK(*into_full[i] == *tracked[i]);
   }
 }
 
@@ -65,8 +75,9 @@ TEST_CASE("A point whose patch is not in the other image is dropped by the back-
   Texture(80, 80, 99).copyTo(b(cv::Rect(120, 80, 80, 80)));
   const std::vector<cv::Point2f> points = {{160, 120}, {60, 60}};
   const std::vector<cv::Point2f> guess = {{163, 122}, {63, 62}};
-  const std::vector<std::optional<cv::Point2f>> tracked = TrackPoints(
-      options, MakeTrackingPyramid(options, a), MakeTrackingPyramid(options, b), points, guess);
+  const std::vector<std::optional<cv::Point2f>> tracked =
+      TrackPoints(options, MakeTrackingPyramid(options, a, true),
+                  MakeTrackingPyramid(options, b, false), points, guess);
   CHECK(!tracked[0]);
   REQUIRE(tracked[1]);
   CHECK(std::abs(tracked[1]->x - 63) < 0.1);
@@ -75,10 +86,11 @@ TEST_CASE("A point whose patch is not in the other image is dropped by the back-
 
 TEST_CASE("Nothing to track gives nothing; an empty image is refused") {
   const TrackOptions options;
-  const TrackingPyramid p = MakeTrackingPyramid(options, Texture(64, 64, 1));
+  const TrackingPyramid p = MakeTrackingPyramid(options, Texture(64, 64, 1), true);
   CHECK(TrackPoints(options, p, p, {}, {}).empty());
   CHECK_THROWS_WITH(GreyImage(cv::Mat()), Catch::Contains("empty image"));
-  CHECK_THROWS_AS(MakeTrackingPyramid(options, cv::Mat(8, 8, CV_8UC3)), std::invalid_argument);
+  CHECK_THROWS_AS(MakeTrackingPyramid(options, cv::Mat(8, 8, CV_8UC3), false),
+                  std::invalid_argument);
   TrackOptions bad;
   bad.max_back_error_px = -1;
   CHECK_THROWS_AS(bad.Check(), std::invalid_argument);

@@ -32,10 +32,16 @@ struct TrackOptions {
 // an empty one.
 cv::Mat GreyImage(const cv::Mat& image);
 
-// The grey image's pyramid with its derivatives (cv::buildOpticalFlowPyramid), made once per
-// frame.
+// The grey image's pyramid (cv::buildOpticalFlowPyramid), made once per frame. Lucas-Kanade
+// needs the derivatives of the image it tracks from, not of the one it tracks into: most
+// frames are only tracked into, so the derivatives (about half the pyramid's cost) are made
+// where a frame is tracked from (with_derivatives; without them TrackPoints would compute them
+// again at every call).
 using TrackingPyramid = std::vector<cv::Mat>;
-TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey);
+TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey,
+                                    bool with_derivatives);
+// True when the pyramid holds the derivatives (MakeTrackingPyramid with_derivatives).
+bool HasDerivatives(const TrackingPyramid& pyramid);
 
 // Up to max_points indices of the keypoints with usable[i], spread over the image (size):
 // the image split into an 8 x 8 grid, the strongest remaining keypoint of each cell taken in

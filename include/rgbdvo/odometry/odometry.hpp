@@ -263,7 +263,7 @@ class Odometry {
     // are empty.
     bool has_features = true;
     cv::Mat grey;             // the grey colour image (GreyImage)
-    TrackingPyramid pyramid;  // the grey image's, to track keypoints from and into
+    TrackingPyramid pyramid;  // the grey image's, to track keypoints into (and from, as a keyframe)
     // As a keyframe: the keypoints tracked into the next frames (SelectSpread; chosen at the
     // first tracked frame), and the pixel noise measured on the first tracked frame's pairs.
     std::vector<int> tracked;
