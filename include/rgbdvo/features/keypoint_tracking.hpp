@@ -34,9 +34,8 @@ cv::Mat GreyImage(const cv::Mat& image);
 
 // The grey image's pyramid (cv::buildOpticalFlowPyramid), made once per frame. Lucas-Kanade
 // needs the derivatives of the image it tracks from, not of the one it tracks into: most
-// frames are only tracked into, so the derivatives (about half the pyramid's cost) are made
-// where a frame is tracked from (with_derivatives; without them TrackPoints would compute them
-// again at every call).
+// frames are only tracked into, so the derivatives are made where a frame is tracked from
+// (with_derivatives; without them TrackPoints would compute them again at every call).
 using TrackingPyramid = std::vector<cv::Mat>;
 TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey,
                                     bool with_derivatives);
