@@ -39,12 +39,15 @@ def preprocess_command(entry):
     return out + ["-E", "-C", "-std=c++17", "-w"]
 
 
+def command_of(entry):
+    return entry.get("command") or " ".join(entry["arguments"])
+
+
 def cache_key(entry, root, build, fixed):
     text = subprocess.run(preprocess_command(entry), cwd=entry["directory"], check=True,
                           capture_output=True).stdout
-    command = entry.get("command") or " ".join(entry["arguments"])
     digest = hashlib.sha256(fixed)
-    for part in (command.encode(), text):
+    for part in ["\n".join(sorted(entry["commands"])).encode(), text]:
         digest.update(part.replace(build.encode(), b"@BUILD@").replace(root.encode(), b"@ROOT@"))
         digest.update(b"\0")
     return digest.hexdigest()
@@ -68,7 +71,14 @@ def main():
     root = os.getcwd()
     os.makedirs(cache_dir, exist_ok=True)
     with open(os.path.join(build, "compile_commands.json")) as f:
-        entries = [e for e in json.load(f) if re.search(pattern, e["file"])]
+        # A file built into several targets is listed once for each: clang-tidy is run on it once
+        # (as run-clang-tidy does), and all its compile commands are part of its key.
+        by_file = {}
+        for e in json.load(f):
+            if re.search(pattern, e["file"]):
+                by_file.setdefault(e["file"], []).append(e)
+    entries = [dict(group[0], commands=[command_of(e) for e in group])
+               for group in by_file.values()]
     version = subprocess.run(["clang-tidy", "--version"], capture_output=True, check=True).stdout
     with open(".clang-tidy", "rb") as f:
         fixed = version + b"\0" + f.read() + b"\0" + " ".join(extra).encode() + b"\0"
