@@ -65,8 +65,7 @@ def check(entry, build, extra, cache_dir, key):
 
 
 def main():
-    build, pattern, cache_dir = (os.path.abspath(a) if i != 1 else a
-                                 for i, a in enumerate(sys.argv[1:4]))
+    build, pattern, cache_dir = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3]
     extra = sys.argv[4:]
     root = os.getcwd()
     os.makedirs(cache_dir, exist_ok=True)
