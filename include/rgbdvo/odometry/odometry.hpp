@@ -72,7 +72,7 @@ struct OdometryOptions {
   // false = SIFT and matching on every frame, as the paper, is the default.
   bool track_between_keyframes = false;
   TrackOptions tracking;
-  double track_stale_noise_ratio = 1.2;
+  double track_stale_noise_ratio = 1.5;
   // After this many rejected frames in a row the reference is given up: the current frame
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
