@@ -562,12 +562,15 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       else if (motion.pixel_noise > options_.track_stale_noise_ratio * key_.first_track_noise)
         new_keyframe = true;
     }
-    // A second estimate of cur against ref, beside the kept one: its counts in *aside, its time
-    // added to the frame's.
+    // A second estimate of cur against ref, beside the kept one: its matches and inliers in
+    // *aside; its time and its brute-force and guided rematching added to the frame's (work done
+    // for the frame whether or not the estimate is kept).
     const auto estimate_aside = [&](const Reference& ref, FrameResult* aside, std::string* reason) {
       *aside = r;
       MotionEstimate estimate = Estimate(ref, cur, world_from_cur_pred, aside, reason);
       r.times = aside->times;
+      r.fallbacks = aside->fallbacks;
+      r.rematches = aside->rematches;
       return estimate;
     };
     if (new_keyframe) ensure_cur_features();
