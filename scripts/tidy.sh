@@ -10,11 +10,7 @@ cd "$(dirname "$0")/.."
 need=()
 command -v clang-tidy >/dev/null || need+=(clang-tidy)
 command -v clang++ >/dev/null || need+=(clang)  # its preprocessor tells whether a file changed
-if [ ${#need[@]} -gt 0 ]; then
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${need[@]}"
-fi
+[ ${#need[@]} -eq 0 ] || scripts/install_packages.sh "${need[@]}"
 cmake -S . -B build-tidy -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
 # GCC builds C++17 without a -std flag; clang's default is C++14, so say it.
 if python3 scripts/tidy_run.py build-tidy "${1:-$PWD/(src|apps|tests)/}" \
