@@ -235,13 +235,15 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
   thread_local std::vector<uint8_t> joined, raw;
   const uint8_t* zdata = idat_data[0];
   if (idat_data.size() > 1) {
-    joined.resize(idat_total);
+    if (joined.size() < idat_total) joined.resize(idat_total);
     for (size_t i = 0, at = 0; i < idat_data.size(); at += idat_size[i], ++i)
       std::memcpy(&joined[at], idat_data[i], idat_size[i]);
     zdata = joined.data();
   }
-  raw.resize(size_t{height} * (line + 1) + 16);  // padding for SubVector's last load
-  const size_t expected = raw.size() - 16;
+  // Grown, never shrunk: colour and depth images alternate, and growing again would zero the
+  // difference every time.
+  const size_t expected = size_t{height} * (line + 1);
+  if (raw.size() < expected + 16) raw.resize(expected + 16);  // padding for SubVector's last load
   if (idat_total > UINT32_MAX || expected > UINT32_MAX) return Fail("IDAT data above 4 GiB");
   thread_local inflate_state inflater;  // 85 KiB: not on the stack
   isal_inflate_init(&inflater);
