@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "rgbdvo/features/sift/simd.hpp"
+#include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {
 

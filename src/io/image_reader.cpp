@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "rgbdvo/io/opencv_codecs.hpp"
+#include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -125,16 +126,44 @@ bool Unfilter(uint8_t type, uint8_t* row, const uint8_t* prev, size_t n, size_t 
 }
 
 // Copies one unfiltered line into an image row in OpenCV's order: BGR(A), native-endian 16 bit.
-void StoreRow(const uint8_t* src, uint8_t* dst, int width, int channels_in, int bit_depth,
-              int channels_out) {
+// The two common cases (16-bit grey: depth; 8-bit RGB: colour) reorder bytes 16 at a time by a
+// shuffle; the rest, and the last bytes of a row, one sample at a time.
+RGBDVO_SIMD_CLONES void StoreRow(const uint8_t* src, uint8_t* dst, int width, int channels_in,
+                                 int bit_depth, int channels_out) {
+  using v16u8 = uint8_t __attribute__((vector_size(16)));
+  const auto load = [](const uint8_t* p) {
+    v16u8 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  };
   if (bit_depth == 16) {
-    const auto* s = src;
+    // Big-endian samples (section 7.1): the two bytes of each swapped.
+    const size_t n = size_t{2} * static_cast<size_t>(width);
+    size_t i = 0;
+    for (; i + 16 <= n; i += 16) {
+      const v16u8 v = load(src + i);
+      const v16u8 swapped =
+          __builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14);
+      std::memcpy(dst + i, &swapped, sizeof swapped);
+    }
     auto* d = reinterpret_cast<uint16_t*>(dst);
-    for (int x = 0; x < width; ++x) d[x] = static_cast<uint16_t>(s[2 * x] << 8 | s[2 * x + 1]);
+    for (size_t x = i / 2; x < n / 2; ++x)
+      d[x] = static_cast<uint16_t>(src[2 * x] << 8 | src[2 * x + 1]);
   } else if (channels_in == 1) {
     std::memcpy(dst, src, static_cast<size_t>(width));
   } else {
-    for (int x = 0; x < width; ++x, src += channels_in, dst += channels_out) {
+    int x = 0;
+    if (channels_in == 3 && channels_out == 3) {
+      // 4 pixels (12 bytes) a step, loading and storing 16: the 4 bytes past them are written
+      // again by the next step, so the last 2 pixels of the row are left to the loop below.
+      for (; x + 6 <= width; x += 4, src += 12, dst += 12) {
+        const v16u8 v = load(src);
+        const v16u8 bgr =
+            __builtin_shufflevector(v, v, 2, 1, 0, 5, 4, 3, 8, 7, 6, 11, 10, 9, 12, 13, 14, 15);
+        std::memcpy(dst, &bgr, sizeof bgr);
+      }
+    }
+    for (; x < width; ++x, src += channels_in, dst += channels_out) {
       dst[0] = src[2];
       dst[1] = src[1];
       dst[2] = src[0];
@@ -145,10 +174,9 @@ void StoreRow(const uint8_t* src, uint8_t* dst, int width, int channels_in, int 
 
 }  // namespace
 
-PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
+PngDecodeResult DecodePng(const uint8_t* bytes, size_t size, int imread_flags) {
   static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0)
-    return Fail("not a PNG signature");
+  if (size < 8 || std::memcmp(bytes, kSignature, 8) != 0) return Fail("not a PNG signature");
   if (imread_flags != cv::IMREAD_COLOR && imread_flags != cv::IMREAD_UNCHANGED)
     return Fail("imread flags other than IMREAD_COLOR / IMREAD_UNCHANGED");
 
@@ -164,10 +192,10 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
     return r;
   };
   for (size_t pos = 8; !iend;) {
-    if (bytes.size() - pos < 12) return truncated();
+    if (size - pos < 12) return truncated();
     const uint32_t len = BigEndian32(&bytes[pos]);
     if (len > 0x7fffffffu) return Fail("chunk length out of range");
-    if (bytes.size() - pos - 12 < len) return truncated();
+    if (size - pos - 12 < len) return truncated();
     const uint8_t* type = &bytes[pos + 4];
     const uint8_t* data = type + 4;
     if (crc32_gzip_refl(0, type, len + 4) != BigEndian32(data + len))
@@ -274,10 +302,10 @@ PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
   return r;
 }
 
-std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>& bytes) {
-  if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return std::nullopt;
+std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const uint8_t* bytes, size_t size) {
+  if (size < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return std::nullopt;
   size_t pos = 2;
-  while (pos + 4 <= bytes.size()) {
+  while (pos + 4 <= size) {
     if (bytes[pos] != 0xFF) return std::nullopt;  // not at a marker: not ours to judge
     const uint8_t marker = bytes[pos + 1];
     if (marker == 0xFF) {  // fill byte
@@ -292,7 +320,7 @@ std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>
     const size_t length = size_t{bytes[pos + 2]} << 8 | bytes[pos + 3];
     const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
                        marker != 0xCC;  // SOF0-SOF15 but DHT, JPG, DAC
-    if (frame && length >= 7 && pos + 9 <= bytes.size()) {
+    if (frame && length >= 7 && pos + 9 <= size) {
       const uint32_t height = uint32_t{bytes[pos + 5]} << 8 | bytes[pos + 6];
       const uint32_t width = uint32_t{bytes[pos + 7]} << 8 | bytes[pos + 8];
       return std::make_pair(width, height);
@@ -302,33 +330,46 @@ std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>
   return std::nullopt;
 }
 
+PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags) {
+  return DecodePng(bytes.data(), bytes.size(), imread_flags);
+}
+
+std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>& bytes) {
+  return JpegSize(bytes.data(), bytes.size());
+}
+
 cv::Mat ReadImage(const std::string& path, int imread_flags) {
-  std::vector<uint8_t> bytes;
+  // The file's bytes, in a buffer kept per thread that grows and never shrinks: a fresh vector
+  // (or one resized from a smaller image) would zero every byte before reading it.
+  thread_local std::vector<uint8_t> buffer;
+  size_t size = 0;
   if (FILE* f = std::fopen(path.c_str(), "rb")) {
     if (std::fseek(f, 0, SEEK_END) == 0) {
-      const long size = std::ftell(f);
-      if (size > kMaxImageFileBytes) {
+      const long length = std::ftell(f);
+      if (length > kMaxImageFileBytes) {
         std::fclose(f);
-        throw std::runtime_error(path + ": " + std::to_string(size) + " bytes, more than the " +
+        throw std::runtime_error(path + ": " + std::to_string(length) + " bytes, more than the " +
                                  std::to_string(kMaxImageFileBytes) + " an image file of at most " +
                                  std::to_string(kMaxImageSide) + " pixels a side can need");
       }
-      if (size > 0 && std::fseek(f, 0, SEEK_SET) == 0) {
-        bytes.resize(static_cast<size_t>(size));
-        if (std::fread(bytes.data(), 1, bytes.size(), f) != bytes.size()) bytes.clear();
+      if (length > 0 && std::fseek(f, 0, SEEK_SET) == 0) {
+        size = static_cast<size_t>(length);
+        if (buffer.size() < size) buffer.resize(size);
+        if (std::fread(buffer.data(), 1, size, f) != size) size = 0;
       }
     }
     std::fclose(f);
   } else {
     return cv::Mat();  // missing or unreadable: nothing for cv::imread to add but a log line
   }
-  PngDecodeResult r = DecodePng(bytes, imread_flags);
+  const uint8_t* bytes = buffer.data();
+  PngDecodeResult r = DecodePng(bytes, size, imread_flags);
   if (r.too_large) throw std::runtime_error(path + ": " + r.reason);
   if (r.truncated) return cv::Mat();
-  if (const auto size = JpegSize(bytes);
-      size && (size->first > kMaxImageSide || size->second > kMaxImageSide))
-    throw std::runtime_error(path + ": JPEG header claims " + std::to_string(size->first) + "x" +
-                             std::to_string(size->second) + " pixels, more than the " +
+  if (const auto jpeg = JpegSize(bytes, size);
+      jpeg && (jpeg->first > kMaxImageSide || jpeg->second > kMaxImageSide))
+    throw std::runtime_error(path + ": JPEG header claims " + std::to_string(jpeg->first) + "x" +
+                             std::to_string(jpeg->second) + " pixels, more than the " +
                              std::to_string(kMaxImageSide) + " a side read here");
   return r.success ? r.image : ImreadWithOpenCv(path, imread_flags);
 }

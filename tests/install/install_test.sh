@@ -85,5 +85,5 @@ for f in usr/share/man/man1/rgbdvo.1 usr/share/bash-completion/completions/rgbdv
   usr/lib/cmake/rgbdvo/rgbdvoConfig.cmake usr/include/rgbdvo/odometry/odometry.hpp; do
   [ -f "$tmp/root/$f" ] || fail "the package lacks /$f"
 done
-[ ! -e "$tmp/root/usr/include/rgbdvo/features/sift/simd.hpp" ] || fail "a private header was installed"
+[ ! -e "$tmp/root/usr/include/rgbdvo/util/simd.hpp" ] || fail "a private header was installed"
 echo "install: prefix, example (CMake and pkg-config), man page, completion and .deb all work"

@@ -38,10 +38,12 @@ struct PngDecodeResult {
 // CRC (libpng rejects critical chunks with a bad CRC; ISA-L's CRC-32 costs little), the
 // zlib stream's Adler-32 and its exact length are checked; anything unsupported, suspicious or
 // corrupt is a success=false result, never an exception, and left to cv::imread to judge.
+PngDecodeResult DecodePng(const uint8_t* bytes, size_t size, int imread_flags);
 PngDecodeResult DecodePng(const std::vector<uint8_t>& bytes, int imread_flags);
 
 // Width and height from a JPEG's frame header (SOF0-SOF15), nullopt when `bytes` is no JPEG or
 // has none before its scan data.
+std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const uint8_t* bytes, size_t size);
 std::optional<std::pair<uint32_t, uint32_t>> JpegSize(const std::vector<uint8_t>& bytes);
 
 // cv::imread(path, flags) with DecodePng for the PNGs it handles: the same image, empty when the

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "rgbdvo/features/sift/simd.hpp"
+#include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {
 namespace {

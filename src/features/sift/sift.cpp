@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "rgbdvo/features/sift/sift_descriptor.hpp"
-#include "rgbdvo/features/sift/simd.hpp"
+#include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {
 namespace {

@@ -3,7 +3,7 @@
 #include <array>
 #include <cstring>
 
-#include "rgbdvo/features/sift/simd.hpp"
+#include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {
 namespace {
