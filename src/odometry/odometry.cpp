@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -321,17 +322,38 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
   return motion;
 }
 
-void Odometry::EnsureFeatures(Reference* ref, FrameResult* r) {
+void Odometry::EnsureFeatures(Reference* ref, FrameResult* r, Reference* beside) {
+  if (beside && (beside->has_features || ref->has_features || threads_ < 2)) {
+    EnsureFeatures(beside, r);
+    beside = nullptr;
+  }
   if (ref->has_features) return;
+  // The second SIFT on its own thread (Extract is const and reentrant: the feature workers
+  // share it); its time is added as the stage's, as if run after the first.
+  std::future<double> beside_seconds;
+  if (beside)
+    beside_seconds = std::async(std::launch::async, [this, beside] {
+      const Stopwatch t;
+      beside->features = extractor_.Extract(beside->grey);
+      return t.Seconds();
+    });
   Stopwatch t0;
   ref->features = extractor_.Extract(ref->grey);
   r->times.features += t0.Seconds();
   ++r->sift_runs;
+  std::vector<Reference*> lift = {ref};
+  if (beside) {
+    r->times.features += beside_seconds.get();
+    ++r->sift_runs;
+    lift.push_back(beside);
+  }
   t0.Restart();
-  ref->points = LiftKeypointsAcrossTime(calib_, options_.lifting, ref->depth_m, ref->features,
-                                        ref->depth_from_cam);
+  for (Reference* done : lift) {
+    done->points = LiftKeypointsAcrossTime(calib_, options_.lifting, done->depth_m, done->features,
+                                           done->depth_from_cam);
+    done->has_features = true;
+  }
   r->times.lifting += t0.Seconds();
-  ref->has_features = true;
 }
 
 MotionEstimate Odometry::EstimateTracked(const Reference& cur, const Rigid3d& world_from_cur_pred,
@@ -573,6 +595,11 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       r.rematches = aside->rematches;
       return estimate;
     };
+    // The keyframe fusion (below) measures a new keyframe again against the last frame, with
+    // SIFT on both: with a second thread, the two SIFT runs go side by side.
+    const bool fuse = options_.fuse_keyframe_pose && !recovered && last_.frame != key_.frame &&
+                      last_.pose_from_features;
+    if (new_keyframe && fuse) EnsureFeatures(&cur, &r, &last_);
     if (new_keyframe) ensure_cur_features();
     if (new_keyframe && tracked) {
       // A keyframe's pose is in every pose after it: it is measured as without tracking, by
@@ -595,8 +622,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       cur.world_from_cam_6dof = key_.world_from_cam_6dof * *motion.unconstrained;
       r.world_from_cam_6dof = cur.world_from_cam_6dof;
     }
-    if (new_keyframe && options_.fuse_keyframe_pose && !recovered && last_.frame != key_.frame &&
-        last_.pose_from_features) {
+    if (new_keyframe && fuse) {
       // The frame's error will be in every pose after it: measure it again against the last
       // frame and average the two verified poses, each weighted by its inliers (an estimate's
       // variance goes as one over its inliers; the last frame's own error is left out). Mean

@@ -248,6 +248,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   options.Check();
   RunSummary summary;
   summary.threads = options.EffectiveThreads();
+  odometry.SetThreads(summary.threads);
   const Stopwatch start;
   double inlier_sum = 0;
   TrackingGaps gaps;

@@ -108,6 +108,9 @@ TEST_CASE(
     "With tracking between keyframes the workers only decode, and the results are one thread's") {
   OdometryOptions tracking;
   tracking.track_between_keyframes = true;
+  // Keyframes renewed as soon as the tracked inliers fall: a new keyframe and the frame before
+  // it then both need SIFT, which two threads run side by side.
+  tracking.keyframe_inlier_ratio = 0.98;
   std::string error;
   RunSummary summary;
   const std::vector<FrameResult> one = RunWith(1, 10, -1, &error, -1, 4, tracking, &summary);
@@ -115,7 +118,7 @@ TEST_CASE(
   const std::vector<FrameResult> two = RunWith(2, 10, -1, &error, -1, 4, tracking);
   CHECK(error.empty());
   REQUIRE(two.size() == one.size());
-  int without_sift = 0;
+  int without_sift = 0, fused = 0;
   for (size_t i = 0; i < one.size(); ++i) {
     INFO("frame " << i);
     CHECK(two[i].status == one[i].status);
@@ -124,9 +127,13 @@ TEST_CASE(
     CHECK(two[i].world_from_cam.matrix() == one[i].world_from_cam.matrix());
     // SIFT's time is the odometry's own, counted only where it ran.
     CHECK((one[i].times.features == 0) == (two[i].times.features == 0));
+    CHECK(two[i].sift_runs == one[i].sift_runs);
     if (one[i].times.features == 0) ++without_sift;
+    // A new keyframe and the frame before it, SIFT on both (side by side with two threads).
+    if (one[i].sift_runs == 2) ++fused;
   }
   CHECK(without_sift > 0);
+  CHECK(fused > 0);
   // The summary counts what the odometry reported.
   int from_tracks = 0, sift_runs = 0;
   for (const FrameResult& r : one) {

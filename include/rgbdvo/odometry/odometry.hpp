@@ -226,6 +226,10 @@ class Odometry {
   // True when Process(frame) runs SIFT only on the frames that need it
   // (track_between_keyframes): features extracted ahead for every frame would be wasted.
   bool ExtractsLazily() const { return options_.track_between_keyframes; }
+  // How many threads a frame's own work may use at once (default 1). With 2 or more and
+  // track_between_keyframes, SIFT on a new keyframe and on the frame before it (for the
+  // keyframe fusion) run side by side. Results are the same either way.
+  void SetThreads(int threads) { threads_ = threads; }
   const SiftExtractor& extractor() const { return extractor_; }
   const OdometryOptions& options() const { return options_; }
   const Calibration& calibration() const { return calib_; }
@@ -285,8 +289,9 @@ class Odometry {
   // world_from_cur_pred puts them, and the motion from the tracked pairs (fills r's counts).
   MotionEstimate EstimateTracked(const Reference& cur, const Rigid3d& world_from_cur_pred,
                                  FrameResult* r);
-  // With track_between_keyframes: runs SIFT on ref and lifts its keypoints, once.
-  void EnsureFeatures(Reference* ref, FrameResult* r);
+  // With track_between_keyframes: runs SIFT on ref and lifts its keypoints, once. With
+  // `beside` (and SetThreads >= 2), the same for it, its SIFT on a second thread meanwhile.
+  void EnsureFeatures(Reference* ref, FrameResult* r, Reference* beside = nullptr);
 
   // With the planar model: the level frame from the first frame's depth or the given mount
   // (throws std::runtime_error when the floor is not found).
@@ -310,6 +315,7 @@ class Odometry {
   std::optional<Eigen::Matrix3d> level_from_cam_;  // with the planar model
   std::optional<GravityCorrection> gravity_;       // with gravity_correction
   std::string motion_brief_;
+  int threads_ = 1;  // SetThreads
   bool started_ = false;
   Reference key_;   // what frames are matched against
   Reference last_;  // the last accepted frame (fallback when the keyframe fails)

@@ -95,7 +95,7 @@ struct RunSummary {
 // Runs until the source ends. Each result goes to every writer (flushed) and then to
 // `on_frame` (may be empty), in frame order. Exceptions from the source or writers propagate
 // (a source error only after every frame before it is written); rows already written stay on
-// disk.
+// disk. The odometry may use as many threads as the run (Odometry::SetThreads).
 RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
                        const std::vector<TrajectoryWriter*>& writers,
                        const std::function<void(const FrameResult&)>& on_frame = {},
