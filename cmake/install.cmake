@@ -3,7 +3,8 @@
 include(CMakePackageConfigHelpers)
 
 # The program, the library (static) and its public headers. The SIFT kernels' internals (blur,
-# SIMD helpers, descriptor) are included by the library's sources alone and stay private.
+# descriptor) and the SIMD clone macro (util/simd.hpp) are included by the library's sources alone
+# and stay private.
 set(RGBDVO_INSTALL_TARGETS rgbdvo_lib)
 if(RGBDVO_WITH_KINECT)
   list(APPEND RGBDVO_INSTALL_TARGETS rgbdvo_kinect)
