@@ -323,37 +323,32 @@ MotionEstimate Odometry::Estimate(const Reference& ref, const Reference& cur,
 }
 
 void Odometry::EnsureFeatures(Reference* ref, FrameResult* r, Reference* beside) {
-  if (beside && (beside->has_features || ref->has_features || threads_ < 2)) {
-    EnsureFeatures(beside, r);
-    beside = nullptr;
-  }
-  if (ref->has_features) return;
-  // The second SIFT on its own thread (Extract is const and reentrant: the feature workers
-  // share it); its time is added as the stage's, as if run after the first.
+  // With a second thread, beside's SIFT runs on it while ref's runs here (Extract is const and
+  // reentrant: the feature workers share it); its time counts as the stage's all the same.
+  const bool side_by_side = beside && threads_ >= 2 && !ref->has_features && !beside->has_features;
   std::future<double> beside_seconds;
-  if (beside)
+  if (side_by_side)
     beside_seconds = std::async(std::launch::async, [this, beside] {
       const Stopwatch t;
       beside->features = extractor_.Extract(beside->grey);
       return t.Seconds();
     });
-  Stopwatch t0;
-  ref->features = extractor_.Extract(ref->grey);
-  r->times.features += t0.Seconds();
-  ++r->sift_runs;
-  std::vector<Reference*> lift = {ref};
-  if (beside) {
-    r->times.features += beside_seconds.get();
+  for (Reference* x : {ref, beside}) {
+    if (!x || x->has_features) continue;
+    Stopwatch t0;
+    if (x == beside && side_by_side) {
+      r->times.features += beside_seconds.get();
+    } else {
+      x->features = extractor_.Extract(x->grey);
+      r->times.features += t0.Seconds();
+    }
     ++r->sift_runs;
-    lift.push_back(beside);
+    t0.Restart();
+    x->points = LiftKeypointsAcrossTime(calib_, options_.lifting, x->depth_m, x->features,
+                                        x->depth_from_cam);
+    x->has_features = true;
+    r->times.lifting += t0.Seconds();
   }
-  t0.Restart();
-  for (Reference* done : lift) {
-    done->points = LiftKeypointsAcrossTime(calib_, options_.lifting, done->depth_m, done->features,
-                                           done->depth_from_cam);
-    done->has_features = true;
-  }
-  r->times.lifting += t0.Seconds();
 }
 
 MotionEstimate Odometry::EstimateTracked(const Reference& cur, const Rigid3d& world_from_cur_pred,
@@ -626,8 +621,8 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       // The frame's error will be in every pose after it: measure it again against the last
       // frame and average the two verified poses, each weighted by its inliers (an estimate's
       // variance goes as one over its inliers; the last frame's own error is left out). Mean
-      // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md).
-      EnsureFeatures(&last_, &r);
+      // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md). The last
+      // frame's SIFT ran above.
       FrameResult again;
       std::string reason;
       const MotionEstimate from_last = estimate_aside(last_, &again, &reason);
