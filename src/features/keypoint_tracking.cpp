@@ -1,10 +1,13 @@
 #include "rgbdvo/features/keypoint_tracking.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <stdexcept>
+
+#include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {
 
@@ -14,6 +17,13 @@ void TrackOptions::Check() const {
   if (!(max_back_error_px >= 0))
     throw std::invalid_argument("TrackOptions.max_back_error_px must be >= 0 (0 = not checked)");
   if (max_points < 1) throw std::invalid_argument("TrackOptions.max_points must be >= 1");
+  if (!(warp_max_shift_px > 0))
+    throw std::invalid_argument("TrackOptions.warp_max_shift_px must be > 0");
+  if (warp_window_px < 3) throw std::invalid_argument("TrackOptions.warp_window_px must be >= 3");
+  if (!(warp_min_px >= 0)) throw std::invalid_argument("TrackOptions.warp_min_px must be >= 0");
+  if (!(warp_settled_px > 0))
+    throw std::invalid_argument("TrackOptions.warp_settled_px must be > 0");
+  if (warp_iterations < 1) throw std::invalid_argument("TrackOptions.warp_iterations must be >= 1");
 }
 
 cv::Mat GreyImage(const cv::Mat& image) {
@@ -98,6 +108,144 @@ std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
     if (!check_back || d.x * d.x + d.y * d.y <= max_back_sq) tracked[i] = p;
   }
   return tracked;
+}
+
+namespace {
+
+// Bilinear sample of a CV_8UC1 image at (x, y); the caller keeps 0 <= x < cols - 1 and
+// 0 <= y < rows - 1.
+float Bilinear(const cv::Mat& image, float x, float y) {
+  const int x0 = static_cast<int>(x);
+  const int y0 = static_cast<int>(y);
+  const float ax = x - static_cast<float>(x0);
+  const float ay = y - static_cast<float>(y0);
+  const uchar* r0 = image.ptr<uchar>(y0) + x0;
+  const uchar* r1 = r0 + image.step[0];
+  const float top = static_cast<float>(r0[0]) + ax * static_cast<float>(r0[1] - r0[0]);
+  const float bottom = static_cast<float>(r1[0]) + ax * static_cast<float>(r1[1] - r1[0]);
+  return top + ay * (bottom - top);
+}
+
+bool Inside(const cv::Mat& image, float x, float y) {
+  return x >= 0 && y >= 0 && x < static_cast<float>(image.cols - 1) &&
+         y < static_cast<float>(image.rows - 1);
+}
+
+}  // namespace
+
+RGBDVO_SIMD_CLONES
+void RefineWarped(const TrackOptions& options, const cv::Mat& from, const cv::Mat& to,
+                  const std::vector<cv::Point2f>& points, const std::vector<cv::Matx22f>& warp,
+                  std::vector<std::optional<cv::Point2f>>* landed) {
+  if (from.type() != CV_8UC1 || to.type() != CV_8UC1)
+    throw std::invalid_argument("tracking: the warped refinement works on CV_8UC1 images");
+  if (warp.size() != points.size() || landed->size() != points.size())
+    throw std::invalid_argument("tracking: one warp and one landing per point");
+  const int half = options.warp_window_px / 2;
+  const int side = 2 * half + 3;  // the window and a ring for the template's derivatives
+  std::vector<float> templ(static_cast<size_t>(side * side));
+  const int width = 2 * half + 1;
+  const int n = width * width;
+  // The template's derivatives and values, and the residuals, padded to a multiple of 8 with
+  // zeros (the padding adds nothing to the sums).
+  const size_t padded = (static_cast<size_t>(n) + 7) / 8 * 8;
+  std::vector<float> tx(padded, 0.0f), ty(padded, 0.0f), tv(padded, 0.0f), err(padded, 0.0f);
+  const float min_px = static_cast<float>(options.warp_min_px);
+  const float settled_sq = static_cast<float>(options.warp_settled_px * options.warp_settled_px);
+  const float max_shift_sq =
+      static_cast<float>(options.warp_max_shift_px * options.warp_max_shift_px);
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!(*landed)[i]) continue;
+    const cv::Matx22f& a = warp[i];
+    // Where the warp moves the window's corners less than warp_min_px from where a shift puts
+    // them, the pyramid's shifted window fits as well: the landing stands.
+    const float corner =
+        static_cast<float>(half) * std::max(std::abs(a(0, 0) - 1) + std::abs(a(0, 1)),
+                                            std::abs(a(1, 0)) + std::abs(a(1, 1) - 1));
+    if (corner < min_px) continue;
+    const float det = a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0);
+    if (!(std::abs(det) > 1e-3f)) continue;
+    const cv::Matx22f inv(a(1, 1) / det, -a(0, 1) / det, -a(1, 0) / det, a(0, 0) / det);
+    // The template: `from` sampled where each offset of the window (and its ring) comes from.
+    // The map is affine: with the grid's four corners inside the image, all of it is.
+    const float r = static_cast<float>(half + 1);
+    const cv::Point2f& p = points[i];
+    bool inside = true;
+    for (const float cy : {-r, r})
+      for (const float cx : {-r, r})
+        inside = inside && Inside(from, p.x + inv(0, 0) * cx + inv(0, 1) * cy,
+                                  p.y + inv(1, 0) * cx + inv(1, 1) * cy);
+    if (!inside) continue;
+    for (int gy = 0; gy < side; ++gy) {
+      const float wy = static_cast<float>(gy) - r;
+      float x = p.x - inv(0, 0) * r + inv(0, 1) * wy;
+      float y = p.y - inv(1, 0) * r + inv(1, 1) * wy;
+      float* row = templ.data() + gy * side;
+      for (int gx = 0; gx < side; ++gx, x += inv(0, 0), y += inv(1, 0))
+        row[gx] = Bilinear(from, x, y);
+    }
+    float hxx = 0, hxy = 0, hyy = 0;
+    int k = 0;
+    for (int gy = 1; gy < side - 1; ++gy)
+      for (int gx = 1; gx < side - 1; ++gx, ++k) {
+        const float* c = templ.data() + gy * side + gx;
+        tx[k] = 0.5f * (c[1] - c[-1]);
+        ty[k] = 0.5f * (c[side] - c[-side]);
+        tv[k] = c[0];
+        hxx += tx[k] * tx[k];
+        hxy += tx[k] * ty[k];
+        hyy += ty[k] * ty[k];
+      }
+    const float hdet = hxx * hyy - hxy * hxy;
+    if (!(hdet > 1e-6f * (hxx + hyy) * (hxx + hyy))) continue;
+    const cv::Point2f start = *(*landed)[i];
+    cv::Point2f q = start;
+    bool settled = false;
+    for (int it = 0; it < options.warp_iterations; ++it) {
+      if (!Inside(to, q.x - static_cast<float>(half), q.y - static_cast<float>(half)) ||
+          !Inside(to, q.x + static_cast<float>(half), q.y + static_cast<float>(half)))
+        break;
+      // Every pixel of the window is at the same fraction of a pixel: one set of bilinear
+      // weights for all of them.
+      const int x0 = static_cast<int>(q.x) - half;
+      const int y0 = static_cast<int>(q.y) - half;
+      const float ax = q.x - static_cast<float>(static_cast<int>(q.x));
+      const float ay = q.y - static_cast<float>(static_cast<int>(q.y));
+      const float w00 = (1 - ax) * (1 - ay), w01 = ax * (1 - ay), w10 = (1 - ax) * ay,
+                  w11 = ax * ay;
+      for (int wy = 0; wy < width; ++wy) {
+        const uchar* r0 = to.ptr<uchar>(y0 + wy) + x0;
+        const uchar* r1 = r0 + to.step[0];
+        float* e = err.data() + wy * width;
+        const float* t = tv.data() + wy * width;
+        for (int wx = 0; wx < width; ++wx)
+          e[wx] = w00 * static_cast<float>(r0[wx]) + w01 * static_cast<float>(r0[wx + 1]) +
+                  w10 * static_cast<float>(r1[wx]) + w11 * static_cast<float>(r1[wx + 1]) - t[wx];
+      }
+      // Eight partial sums (the padding is zero): the loop vectorizes.
+      std::array<float, 8> sx{}, sy{};
+      for (size_t j = 0; j < err.size(); j += 8)
+        for (size_t l = 0; l < 8; ++l) {
+          sx[l] += tx[j + l] * err[j + l];
+          sy[l] += ty[j + l] * err[j + l];
+        }
+      float bx = 0, by = 0;
+      for (size_t l = 0; l < 8; ++l) {
+        bx += sx[l];
+        by += sy[l];
+      }
+      const float dx = (hyy * bx - hxy * by) / hdet;
+      const float dy = (hxx * by - hxy * bx) / hdet;
+      q.x -= dx;
+      q.y -= dy;
+      if (dx * dx + dy * dy < settled_sq) {
+        settled = true;
+        break;
+      }
+    }
+    const cv::Point2f moved = q - start;
+    if (settled && moved.x * moved.x + moved.y * moved.y <= max_shift_sq) (*landed)[i] = q;
+  }
 }
 
 }  // namespace rgbdvo

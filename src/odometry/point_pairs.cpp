@@ -1,5 +1,6 @@
 #include "rgbdvo/odometry/point_pairs.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "rgbdvo/sensor/camera.hpp"
@@ -83,6 +84,40 @@ std::vector<std::optional<Eigen::Vector2d>> PredictKeypoints(const Calibration& 
     if (uv.allFinite()) out[i] = uv;
   }
   return out;
+}
+
+std::vector<cv::Matx22f> PredictWarps(const Calibration& calib, const KeypointPoints& ref_points,
+                                      const Rigid3d& cur_from_ref, double step_px) {
+  std::vector<cv::Matx22f> warps(ref_points.size(), cv::Matx22f::eye());
+  // A colour pixel's step is A (C) IR pixels: at depth z, A step / fx metres across.
+  KeypointPoints three(3 * ref_points.size());
+  for (size_t i = 0; i < ref_points.size(); ++i) {
+    if (!ref_points[i]) continue;
+    const Eigen::Vector3d& p = *ref_points[i];
+    three[3 * i] = p;
+    three[3 * i + 1] = p + Eigen::Vector3d(step_px * calib.A * p.z() / calib.fx, 0, 0);
+    three[3 * i + 2] = p + Eigen::Vector3d(0, step_px * calib.C * p.z() / calib.fy, 0);
+  }
+  const std::vector<std::optional<Eigen::Vector2d>> before =
+      PredictKeypoints(calib, three, Rigid3d::Identity());
+  const std::vector<std::optional<Eigen::Vector2d>> after =
+      PredictKeypoints(calib, three, cur_from_ref);
+  for (size_t i = 0; i < ref_points.size(); ++i) {
+    const size_t k = 3 * i;
+    if (!before[k] || !before[k + 1] || !before[k + 2] || !after[k] || !after[k + 1] ||
+        !after[k + 2])
+      continue;
+    Eigen::Matrix2d steps_before, steps_after;
+    steps_before << *before[k + 1] - *before[k], *before[k + 2] - *before[k];
+    steps_after << *after[k + 1] - *after[k], *after[k + 2] - *after[k];
+    const double det = steps_before.determinant();
+    if (!(std::abs(det) > 1e-6 * step_px * step_px)) continue;
+    const Eigen::Matrix2d a = steps_after * steps_before.inverse();
+    if (!a.allFinite()) continue;
+    warps[i] = cv::Matx22f(static_cast<float>(a(0, 0)), static_cast<float>(a(0, 1)),
+                           static_cast<float>(a(1, 0)), static_cast<float>(a(1, 1)));
+  }
+  return warps;
 }
 
 }  // namespace rgbdvo

@@ -875,3 +875,35 @@ TEST_CASE("A keyframe reached by tracking takes its pose from SIFT matching") {
   CHECK(keyframes >= 1);
   CHECK(tracked >= 10);
 }
+
+TEST_CASE("Where the tracks fail and SIFT reaches the keyframe, the keyframe stays") {
+  // Fewer tracks than verification needs (min_inliers): every tracked estimate fails. Each
+  // frame is then matched by SIFT against the keyframe, which is renewed by the inlier rule as
+  // without tracking, not at every frame (that would chain the poses frame to frame).
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(30, 0.02, 1.5);
+  const auto keyframes_of = [&](const OdometryOptions& options) {
+    Odometry odometry(options, CalibFor(cam));
+    int keyframes = 0;
+    for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+      const FrameResult r = odometry.Process(Render(scene, cam, path[i], i));
+      INFO("frame " << i << " " << r.StatusString() << " inliers " << r.inliers);
+      REQUIRE((r.status == FrameStatus::kAccepted || r.status == FrameStatus::kFirst));
+      CHECK(!r.from_tracks);
+      CHECK(TranslationError(r.world_from_cam, path[i]) < 0.02);
+      if (r.keyframe) ++keyframes;
+    }
+    return keyframes;
+  };
+  OdometryOptions options;
+  options.keyframe_inlier_ratio = 0.9;  // renewals happen within the 30 frames
+  const int without_tracking = keyframes_of(options);
+  options.track_between_keyframes = true;
+  options.tracking.max_points = options.verify.min_inliers - 1;
+  const int tracks_failing = keyframes_of(options);
+  INFO("keyframes without tracking " << without_tracking << ", tracks failing " << tracks_failing);
+  CHECK(without_tracking >= 2);
+  CHECK(tracks_failing <= without_tracking + 2);
+  CHECK(tracks_failing < static_cast<int>(path.size()) / 2);
+}

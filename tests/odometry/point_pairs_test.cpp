@@ -153,6 +153,39 @@ TEST_CASE("PredictKeypoints projects with the motion and inverts eq. 1") {
   CHECK(p[0]->y() == Approx(uv_vis.y()));
 }
 
+TEST_CASE("PredictWarps: moving toward a point magnifies, a roll turns, no point leaves it be") {
+  Calibration c;
+  c.A = 0.91;
+  c.B = 28.0;
+  c.C = 0.92;
+  c.D = 19.0;
+  const Eigen::Vector2d uv_vis(320, 240);
+  const KeypointPoints points = {BackProject(c, ColorToIr(c, uv_vis), 2.0), std::nullopt};
+  // 0.4 m nearer a surface 2 m away (facing the camera): 2 / 1.6 = 1.25 times larger.
+  Rigid3d nearer = Rigid3d::Identity();
+  nearer.translation() = Eigen::Vector3d(0, 0, -0.4);
+  std::vector<cv::Matx22f> w = PredictWarps(c, points, nearer);
+  REQUIRE(w.size() == 2);
+  CHECK(w[0](0, 0) == Approx(1.25).epsilon(1e-4));
+  CHECK(w[0](1, 1) == Approx(1.25).epsilon(1e-4));
+  CHECK(std::abs(w[0](0, 1)) < 1e-4);
+  CHECK(std::abs(w[0](1, 0)) < 1e-4);
+  CHECK(w[1] == cv::Matx22f::eye());
+  // Rolled 10 degrees about the optical axis: the colour pixels turn by 10 degrees (scaled by
+  // the two axes' pixel sizes, A and C, which differ by 1 %).
+  Rigid3d rolled = Rigid3d::Identity();
+  rolled.linear() = Eigen::AngleAxisd(10 * M_PI / 180, Eigen::Vector3d::UnitZ()).matrix();
+  w = PredictWarps(c, points, rolled);
+  const double cs = std::cos(10 * M_PI / 180), sn = std::sin(10 * M_PI / 180);
+  CHECK(w[0](0, 0) == Approx(cs).epsilon(1e-4));
+  CHECK(w[0](1, 1) == Approx(cs).epsilon(1e-4));
+  CHECK(w[0](0, 1) == Approx(-sn * c.C / c.A).epsilon(1e-4));
+  CHECK(w[0](1, 0) == Approx(sn * c.A / c.C).epsilon(1e-4));
+  // No motion: the identity.
+  w = PredictWarps(c, points, Rigid3d::Identity());
+  for (int i = 0; i < 4; ++i) CHECK(w[0].val[i] == Approx(cv::Matx22f::eye().val[i]).margin(1e-5));
+}
+
 TEST_CASE("Lifting across time finds the point with an offset IR camera and the disparity term") {
   // As above, with the Kinect's geometry: the depth from an IR camera 2.5 cm beside the colour
   // camera, mapped with the depth-aware calibration (exact at every depth).

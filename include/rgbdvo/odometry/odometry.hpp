@@ -61,8 +61,8 @@ struct OdometryOptions {
   // Lucas-Kanade from where the motion prior puts them, TrackPoints) and the tracked pairs go
   // through RANSAC, the refinement and verification as matches do; SIFT runs only where it is
   // needed: on a frame that becomes a keyframe, on the frame before it (keyframe fusion), and
-  // where the tracked estimate fails verification (that frame is then matched as without
-  // tracking and becomes the keyframe: the tracks no longer carry the motion). A new keyframe
+  // where the tracked estimate fails verification (that frame and the keyframe's next ones are
+  // then matched as without tracking: the tracks no longer carry the motion). A new keyframe
   // also when the tracks go stale: the refinement's measured pixel noise on them
   // (EstimateNoiseScale) above track_stale_noise_ratio times that of the keyframe's first
   // tracked frame (a tracked window drifts as the view changes, which the inlier count does not
@@ -199,6 +199,9 @@ struct FrameResult {
   // come with the frame: false and 0.
   bool from_tracks = false;
   int sift_runs = 0;
+  // The frame became the keyframe the next frames are measured against (the first frame, a
+  // renewal, a restart after "lost").
+  bool keyframe = false;
   // For each final inlier: the distance from where the motion prior predicted its reference
   // keypoint to the current keypoint it was matched with, colour pixels.
   std::vector<float> prediction_error_px;
@@ -272,6 +275,9 @@ class Odometry {
     // first tracked frame), and the pixel noise measured on the first tracked frame's pairs.
     std::vector<int> tracked;
     double first_track_noise = -1;
+    // Set when a frame's tracks failed and SIFT matching reached the keyframe: its next frames
+    // are matched by SIFT (tracking resumes from the next keyframe).
+    bool tracks_lost = false;
     bool pose_from_features = true;  // else from the depth alignment
   };
   // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided

@@ -53,4 +53,12 @@ std::vector<std::optional<Eigen::Vector2d>> PredictKeypoints(const Calibration& 
                                                              const KeypointPoints& ref_points,
                                                              const Rigid3d& cur_from_ref);
 
+// The local affine map of the reference colour image's pixels around each keypoint onto the
+// current colour image's (for RefineWarped), as PredictKeypoints moves them: the keypoint's 3D
+// point and two beside it, step_px to the right of and below it at the same depth (the surface
+// taken as facing the camera), projected before and after the motion. Identity where a point
+// has no 3D point or a projection fails.
+std::vector<cv::Matx22f> PredictWarps(const Calibration& calib, const KeypointPoints& ref_points,
+                                      const Rigid3d& cur_from_ref, double step_px = 4.0);
+
 }  // namespace rgbdvo
