@@ -33,6 +33,16 @@ std::vector<PointPair> LiftMatches(const Calibration& calib, const LiftOptions& 
   return pairs;
 }
 
+// A colour -> IR mapping of eq. 1 that is not the identity (A, C differ by 1 %).
+Calibration MappedCalib() {
+  Calibration c;
+  c.A = 0.91;
+  c.B = 28.0;
+  c.C = 0.92;
+  c.D = 19.0;
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("Lifting every keypoint once gives the same pairs as lifting each match") {
@@ -126,11 +136,7 @@ TEST_CASE("Depth taken 15 ms after the colour image in a fast turn is read where
 }
 
 TEST_CASE("PredictKeypoints projects with the motion and inverts eq. 1") {
-  Calibration c;
-  c.A = 0.91;
-  c.B = 28.0;
-  c.C = 0.92;
-  c.D = 19.0;
+  const Calibration c = MappedCalib();
   const Eigen::Vector2d uv_vis(200, 150);
   const KeypointPoints points = {BackProject(c, ColorToIr(c, uv_vis), 2.0), std::nullopt,
                                  Eigen::Vector3d(0, 0, 1)};
@@ -154,11 +160,7 @@ TEST_CASE("PredictKeypoints projects with the motion and inverts eq. 1") {
 }
 
 TEST_CASE("PredictWarps: moving toward a point magnifies, a roll turns, no point leaves it be") {
-  Calibration c;
-  c.A = 0.91;
-  c.B = 28.0;
-  c.C = 0.92;
-  c.D = 19.0;
+  const Calibration c = MappedCalib();
   const Eigen::Vector2d uv_vis(320, 240);
   const KeypointPoints points = {BackProject(c, ColorToIr(c, uv_vis), 2.0), std::nullopt};
   // 0.4 m nearer a surface 2 m away (facing the camera): 2 / 1.6 = 1.25 times larger.
