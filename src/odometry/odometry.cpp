@@ -587,11 +587,13 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       // a fast turn it jumps from frame to frame (fr1/desk, frames 73-78: 1.0, 3.2, 1.0, 1.7,
       // 1.0, 1.3). The default ratio, 1.5, sits at the staleness curve's knee (between ages 4
       // and 5); at 1.2 the turn's milder blurred frames renewed the keyframe too (SIFT on 55 of
-      // fast90's 90 frames against 47, equally accurate).
-      if (key_.first_track_noise < 0)
-        key_.first_track_noise = motion.pixel_noise;
-      else if (motion.pixel_noise > options_.track_stale_noise_ratio * key_.first_track_noise)
-        new_keyframe = true;
+      // fast90's 90 frames against 47, equally accurate). The bar is the least noise measured
+      // on the keyframe's tracked frames so far, not its first's: a blurred first tracked frame
+      // would raise it for the keyframe's whole life (fr1/xyz every 3rd, seed 9: a first frame
+      // at 1.50 and 1.00 on the next let 1.69 pass, and the keyframe after it tracked its frames
+      // at 52-73 inliers and noise 2.0-2.2; ATE 0.0156 -> 0.0119 m; docs/benchmarks.md).
+      if (!key_.staleness) key_.staleness.emplace(options_.track_stale_noise_ratio);
+      if (key_.staleness->Stale(motion.pixel_noise)) new_keyframe = true;
     }
     // A second estimate of cur against ref, beside the kept one: its matches and inliers in
     // *aside; its time and its brute-force and guided rematching added to the frame's (work done

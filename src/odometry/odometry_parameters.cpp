@@ -139,8 +139,8 @@ const std::vector<OdometryParameter> kParameters = {
      "tracking: keep a track when tracking it back lands within this, px (0 = not tracked back)",
      [](O& o) -> ParameterRef { return &o.tracking.max_back_error_px; }},
     {"tracking.stale_noise_ratio", "track-stale-noise",
-     "tracking: new keyframe when the tracks' pixel noise exceeds this times the first tracked "
-     "frame's (0 = not)",
+     "tracking: new keyframe when the tracks' pixel noise exceeds this times the least on the "
+     "keyframe's tracked frames so far (0 = not)",
      [](O& o) -> ParameterRef { return &o.track_stale_noise_ratio; }},
     {"compensate_depth_delay", "depth-delay",
      "lift keypoints where the depth image saw them, moved over the colour-depth time offset "

@@ -20,6 +20,7 @@
 #include "rgbdvo/geometry/motion_prior.hpp"
 #include "rgbdvo/odometry/gravity_correction.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
+#include "rgbdvo/odometry/track_staleness.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
 #include "rgbdvo/sources/frame.hpp"
 
@@ -64,12 +65,13 @@ struct OdometryOptions {
   // where the tracked estimate fails verification (that frame and the keyframe's next ones are
   // then matched as without tracking: the tracks no longer carry the motion). A new keyframe
   // also when the tracks go stale: the refinement's measured pixel noise on them
-  // (EstimateNoiseScale) above track_stale_noise_ratio times that of the keyframe's first
-  // tracked frame (a tracked window drifts as the view changes, which the inlier count does not
-  // show). A frame that becomes a keyframe takes its pose from SIFT matching against the old
-  // keyframe where that verifies. 0.6-0.8 of the CPU; as accurate on the shared TUM
-  // recordings, less on unregistered depth and the synthetic robot (docs/benchmarks.md), so
-  // false = SIFT and matching on every frame, as the paper, is the default.
+  // (EstimateNoiseScale) above track_stale_noise_ratio times the least measured on the
+  // keyframe's tracked frames so far (a tracked window drifts as the view changes, which the
+  // inlier count does not show; TrackStaleness). A frame that becomes a keyframe takes its
+  // pose from SIFT matching against the old keyframe where that verifies. 0.6-0.8 of the CPU;
+  // as accurate on the shared TUM recordings, less on unregistered depth and the synthetic
+  // robot (docs/benchmarks.md), so false = SIFT and matching on every frame, as the paper, is
+  // the default.
   bool track_between_keyframes = false;
   TrackOptions tracking;
   double track_stale_noise_ratio = 1.5;
@@ -272,9 +274,9 @@ class Odometry {
     cv::Mat grey;             // the grey colour image (GreyImage)
     TrackingPyramid pyramid;  // the grey image's, to track keypoints into (and from, as a keyframe)
     // As a keyframe: the keypoints tracked into the next frames (SelectSpread; chosen at the
-    // first tracked frame), and the pixel noise measured on the first tracked frame's pairs.
+    // first tracked frame), and when they go stale (made at the first tracked frame).
     std::vector<int> tracked;
-    double first_track_noise = -1;
+    std::optional<TrackStaleness> staleness;
     // Set when a frame's tracks failed and SIFT matching reached the keyframe: its next frames
     // are matched by SIFT (tracking resumes from the next keyframe).
     bool tracks_lost = false;
