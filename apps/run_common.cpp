@@ -96,8 +96,9 @@ void DelayFrame(int ms) {
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {
   cmd->add_option("--threads", options->threads,
                   "1 = everything on one core (OpenCV's loops too); N >= 2 = N feature workers "
-                  "(decode + SIFT) while the main thread matches, estimates and writes in frame "
-                  "order (same results); 0 = automatic: the hardware concurrency, at most " +
+                  "(decode, and SIFT with --no-track; with tracking a new keyframe's two SIFT "
+                  "runs go side by side) while the main thread matches, estimates and writes in "
+                  "frame order (same results); 0 = automatic: the hardware concurrency, at most " +
                       std::to_string(RunOptions::kMaxAutoThreads))
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

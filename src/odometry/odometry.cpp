@@ -75,6 +75,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.depth_keyframe = false;              // (with the fallback) frame to frame
     o.compensate_depth_delay = false;      // depth at the keypoint's own pixel
     o.depth_term_step = 0;                 // feature residuals only
+    o.track_between_keyframes = false;     // SIFT and matching on every frame
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");

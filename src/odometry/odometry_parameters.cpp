@@ -114,7 +114,7 @@ const std::vector<OdometryParameter> kParameters = {
      [](O& o) -> ParameterRef { return &o.fuse_keyframe_pose; }},
     {"tracking.enabled", "track",
      "between keyframes, track the keyframe's keypoints (Lucas-Kanade) instead of running SIFT "
-     "and matching on every frame",
+     "and matching on every frame (--no-track: SIFT on every frame, as the paper)",
      [](O& o) -> ParameterRef { return &o.track_between_keyframes; }},
     {"tracking.window_px", "track-window", "tracking: Lucas-Kanade window side, px",
      [](O& o) -> ParameterRef { return &o.tracking.window_px; }},

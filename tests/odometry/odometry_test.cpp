@@ -334,21 +334,30 @@ TEST_CASE("A prediction beyond the radius falls back to brute force and gives th
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(3, 0.02, 1.5);
-  const OdometryOptions defaults;
-  Odometry odometry(defaults, CalibFor(cam));
-  odometry.Process(Render(scene, cam, path[0], 0));
-  REQUIRE(odometry.Process(Render(scene, cam, path[1], 1)).fallbacks == 0);
   // Frame 2's colour image claims to come 3 s later: constant velocity extrapolates 90 frame
   // steps (about 1.8 m and 135 degrees), so its keypoints are predicted far from where they are.
   Frame late = Render(scene, cam, path[2], 2);
   late.color_timestamp = 1 / 30.0 + 3.0;
-  const FrameResult r = odometry.Process(late);
-  INFO(r.StatusString() << " inliers " << r.inliers);
-  CHECK(r.fallbacks == 1);
-  CHECK(r.status == FrameStatus::kAccepted);
-  CHECK(RigidNear(r.world_from_cam, path[2], 0.5, 0.01));
+  // SIFT and guided matching on every frame: one fallback. Tracking (the default): the tracks
+  // seeded there fail, and SIFT matching falls back as well.
+  for (bool track : {false, true}) {
+    INFO("tracking " << track);
+    OdometryOptions options;
+    options.track_between_keyframes = track;
+    Odometry odometry(options, CalibFor(cam));
+    odometry.Process(Render(scene, cam, path[0], 0));
+    REQUIRE(odometry.Process(Render(scene, cam, path[1], 1)).fallbacks == 0);
+    const FrameResult r = odometry.Process(late);
+    INFO(r.StatusString() << " inliers " << r.inliers);
+    if (!track) CHECK(r.fallbacks == 1);
+    CHECK(r.fallbacks >= 1);
+    CHECK(!r.from_tracks);
+    CHECK(r.status == FrameStatus::kAccepted);
+    CHECK(RigidNear(r.world_from_cam, path[2], 0.5, 0.01));
+  }
   // With brute force only there is nothing to fall back from.
   OdometryOptions brute;
+  brute.track_between_keyframes = false;
   brute.guided_radius_px = 0;
   Odometry brute_odometry(brute, CalibFor(cam));
   brute_odometry.Process(Render(scene, cam, path[0], 0));
@@ -367,6 +376,7 @@ TEST_CASE("A prior off by most of the radius is corrected by matching again arou
   // moves them about 15 px), within the radius but beyond its inner half.
   const auto run = [&](bool rematch, double late) {
     OdometryOptions options;
+    options.track_between_keyframes = false;  // SIFT matching on every frame
     options.guided_rematch = rematch;
     Odometry odometry(options, CalibFor(cam));
     odometry.Process(Render(scene, cam, path[0], 0));
@@ -840,7 +850,8 @@ TEST_CASE("Tracking between keyframes follows a synthetic path, SIFT on a part o
   CHECK(sift_frames <= static_cast<int>(path.size()) / 2);
   CHECK(RigidNear(last.world_from_cam, path.back(), 1.0, 0.02));
   const OdometryOptions defaults;
-  CHECK(!defaults.track_between_keyframes);
+  CHECK(defaults.track_between_keyframes);
+  CHECK(defaults.tracking.warp);
   CHECK(!PresetOptions("paper").track_between_keyframes);
 }
 
@@ -898,6 +909,7 @@ TEST_CASE("Where the tracks fail and SIFT reaches the keyframe, the keyframe sta
   };
   OdometryOptions options;
   options.keyframe_inlier_ratio = 0.9;  // renewals happen within the 30 frames
+  options.track_between_keyframes = false;
   const int without_tracking = keyframes_of(options);
   options.track_between_keyframes = true;
   options.tracking.max_points = options.verify.min_inliers - 1;

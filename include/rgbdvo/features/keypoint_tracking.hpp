@@ -30,10 +30,10 @@ struct TrackOptions {
   // as the view moves on from the keyframe, its content grows, shrinks and shears, and the track
   // slides (the synthetic robot lap's tracked poses erred 1.0 mm against their keyframe at ages
   // 0-4 frames and 3.9 mm at 25-29; warped, 1.0 and 1.8). Measured (docs/benchmarks.md): the
-  // three synthetic robot laps' mean ATE 0.0097 -> 0.0078 m, the shared recordings' RPE 2 %
-  // lower on average, but 2 of 108 runs behind a peer on fr1/xyz every 3rd frame (a prior off
-  // on thinned frames warps the window wrongly), and 6 % more instructions: not yet the default.
-  bool warp = false;
+  // three synthetic robot laps' mean ATE 0.0097 -> 0.0078 m, the shared recordings as
+  // accurate (0 of 108 runs behind a peer, with or without it), 6 % more instructions.
+  // false = OpenCV's shifted window alone.
+  bool warp = true;
   // The refinement's iterations at most, and how far it may move a track, pixels: farther, it
   // has left the place the pyramid found, and the pyramid's landing stands.
   int warp_window_px = 9;

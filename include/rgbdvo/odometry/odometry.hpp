@@ -68,11 +68,11 @@ struct OdometryOptions {
   // (EstimateNoiseScale) above track_stale_noise_ratio times the least measured on the
   // keyframe's tracked frames so far (a tracked window drifts as the view changes, which the
   // inlier count does not show; TrackStaleness). A frame that becomes a keyframe takes its
-  // pose from SIFT matching against the old keyframe where that verifies. 0.6-0.8 of the CPU;
-  // as accurate on the shared TUM recordings, less on unregistered depth and the synthetic
-  // robot (docs/benchmarks.md), so false = SIFT and matching on every frame, as the paper, is
-  // the default.
-  bool track_between_keyframes = false;
+  // pose from SIFT matching against the old keyframe where that verifies. Less CPU than SIFT
+  // on every frame and as accurate over all the recordings measured (shared, thinned,
+  // reversed, unregistered, synthetic laps; docs/benchmarks.md). false = SIFT and matching on
+  // every frame, as the paper (--preset paper).
+  bool track_between_keyframes = true;
   TrackOptions tracking;
   double track_stale_noise_ratio = 1.5;
   // After this many rejected frames in a row the reference is given up: the current frame
