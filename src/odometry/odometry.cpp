@@ -574,12 +574,9 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
     // the usual rule renews it. Renewing at every such frame would chain the poses frame to
     // frame where the matches are fewest (synthetic robot lap, frames 820-900, a view of few
     // features: 19 mm of drift against the default's 4; docs/benchmarks.md).
-    if (track_failed && !recovered) {
-      key_.tracks_lost = true;
-      track_failed = false;
-    }
-    bool new_keyframe =
-        track_failed || !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
+    if (track_failed && !recovered) key_.tracks_lost = true;
+    bool new_keyframe = (track_failed && recovered) ||
+                        !(r.inliers >= options_.keyframe_inlier_ratio * key_.first_inliers &&
                           options_.keyframe_inlier_ratio > 0);
     if (tracked && options_.track_stale_noise_ratio > 0) {
       // The tracks' pixel noise grows as they go stale (fr1/xyz every 2nd frame, seed 42, by the
