@@ -354,46 +354,52 @@ void Odometry::EnsureFeatures(Reference* ref, FrameResult* r, Reference* beside)
 
 MotionEstimate Odometry::EstimateTracked(const Reference& cur, const Rigid3d& world_from_cur_pred,
                                          FrameResult* r) {
-  Stopwatch t0;
   if (key_.tracked.empty()) {
     std::vector<bool> usable(key_.points.size());
     for (size_t i = 0; i < usable.size(); ++i) usable[i] = key_.points[i].has_value();
     key_.tracked = SelectSpread(key_.features.keypoints, usable, key_.grey.size(),
                                 options_.tracking.max_points);
   }
-  // The keyframe is tracked from: its pyramid gets the derivatives once.
-  if (!HasDerivatives(key_.pyramid))
-    key_.pyramid = MakeTrackingPyramid(options_.tracking, key_.grey, /*with_derivatives=*/true);
+  return EstimateFromTracks(&key_, key_.tracked, cur,
+                            world_from_cur_pred.inverse() * key_.world_from_cam, r);
+}
+
+MotionEstimate Odometry::EstimateFromTracks(Reference* ref, const std::vector<int>& tracked,
+                                            const Reference& cur, const Rigid3d& cur_from_ref_pred,
+                                            FrameResult* r) {
+  Stopwatch t0;
+  // The reference is tracked from: its pyramid gets the derivatives once.
+  if (!HasDerivatives(ref->pyramid))
+    ref->pyramid = MakeTrackingPyramid(options_.tracking, ref->grey, /*with_derivatives=*/true);
   // Each tracked keypoint starts where the motion prior puts it (where it was, without a
   // prediction).
-  KeypointPoints key_points;
+  KeypointPoints ref_points;
   std::vector<cv::Point2f> from, guess;
-  for (int i : key_.tracked) {
-    key_points.push_back(key_.points[i]);
-    from.push_back(key_.features.keypoints[i].pt);
+  for (int i : tracked) {
+    ref_points.push_back(ref->points[i]);
+    from.push_back(ref->features.keypoints[i].pt);
   }
-  const Rigid3d cur_from_key_pred = world_from_cur_pred.inverse() * key_.world_from_cam;
   const std::vector<std::optional<Eigen::Vector2d>> predicted =
-      PredictKeypoints(calib_, key_points, cur_from_key_pred);
+      PredictKeypoints(calib_, ref_points, cur_from_ref_pred);
   for (size_t k = 0; k < from.size(); ++k)
     guess.push_back(predicted[k] ? cv::Point2f(static_cast<float>(predicted[k]->x()),
                                                static_cast<float>(predicted[k]->y()))
                                  : from[k]);
   std::vector<std::optional<cv::Point2f>> landed =
-      TrackPoints(options_.tracking, key_.pyramid, cur.pyramid, from, guess);
+      TrackPoints(options_.tracking, ref->pyramid, cur.pyramid, from, guess);
   if (options_.tracking.warp)
-    RefineWarped(options_.tracking, key_.grey, cur.grey, from,
-                 PredictWarps(calib_, key_points, cur_from_key_pred), &landed);
-  // The tracks as matches: the keyframe's keypoint (queryIdx) and where it landed (trainIdx, a
-  // keypoint of the keyframe's size there).
+    RefineWarped(options_.tracking, ref->grey, cur.grey, from,
+                 PredictWarps(calib_, ref_points, cur_from_ref_pred), &landed);
+  // The tracks as matches: the reference's keypoint (queryIdx) and where it landed (trainIdx, a
+  // keypoint of the reference's size there).
   Features moved;
   std::vector<cv::DMatch> matches;
   std::vector<size_t> track_of_match;
   for (size_t k = 0; k < landed.size(); ++k) {
     if (!landed[k]) continue;
-    cv::KeyPoint kp = key_.features.keypoints[key_.tracked[k]];
+    cv::KeyPoint kp = ref->features.keypoints[tracked[k]];
     kp.pt = *landed[k];
-    matches.emplace_back(key_.tracked[k], static_cast<int>(moved.keypoints.size()), 0.0f);
+    matches.emplace_back(tracked[k], static_cast<int>(moved.keypoints.size()), 0.0f);
     moved.keypoints.push_back(kp);
     track_of_match.push_back(k);
   }
@@ -404,7 +410,7 @@ MotionEstimate Odometry::EstimateTracked(const Reference& cur, const Rigid3d& wo
       LiftKeypointsAcrossTime(calib_, options_.lifting, cur.depth_m, moved, cur.depth_from_cam);
   r->times.lifting += t0.Seconds();
   std::vector<int> match_of_pair;
-  MotionEstimate motion = EstimateFromMatches(key_, cur, cur_points, matches, r, &match_of_pair);
+  MotionEstimate motion = EstimateFromMatches(*ref, cur, cur_points, matches, r, &match_of_pair);
   r->prediction_error_px.clear();
   for (int p : motion.inliers) {
     const size_t k = track_of_match[match_of_pair[p]];
@@ -604,11 +610,14 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       r.rematches = aside->rematches;
       return estimate;
     };
-    // The keyframe fusion (below) measures a new keyframe again against the last frame, with
-    // SIFT on both: with a second thread, the two SIFT runs go side by side.
+    // The keyframe fusion (below) measures a new keyframe again against the last frame: where
+    // that frame was tracked (it has no SIFT features), by tracking the new keyframe's keypoints
+    // back into it (track_fusion); else by SIFT on both, which with a second thread go side by
+    // side.
     const bool fuse = options_.fuse_keyframe_pose && !recovered && last_.frame != key_.frame &&
                       last_.pose_from_features;
-    if (new_keyframe && fuse) EnsureFeatures(&cur, &r, &last_);
+    const bool fuse_by_tracks = fuse && options_.track_fusion && !last_.has_features;
+    if (new_keyframe && fuse && !fuse_by_tracks) EnsureFeatures(&cur, &r, &last_);
     if (new_keyframe) ensure_cur_features();
     if (new_keyframe && tracked) {
       // A keyframe's pose is in every pose after it: it is measured as without tracking, by
@@ -635,15 +644,33 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       // The frame's error will be in every pose after it: measure it again against the last
       // frame and average the two verified poses, each weighted by its inliers (an estimate's
       // variance goes as one over its inliers; the last frame's own error is left out). Mean
-      // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md). The last
-      // frame's SIFT ran above.
-      FrameResult again;
+      // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md).
+      FrameResult again = r;
       std::string reason;
-      const MotionEstimate from_last = estimate_aside(last_, &again, &reason);
-      if (reason.empty()) {
+      std::optional<Rigid3d> last_from_cur;
+      if (fuse_by_tracks) {
+        // All the new keyframe's keypoints with a 3D point, tracked back into the last frame
+        // from where the motion prior puts them (the prior the last frame's own tracks started
+        // from; started from the keyframe's estimate instead, the tracks lean toward it:
+        // docs/benchmarks.md). The tracking makes the keyframe's pyramid derivatives, which its
+        // next frames need.
+        std::vector<int> lifted;
+        for (size_t i = 0; i < cur.points.size(); ++i)
+          if (cur.points[i]) lifted.push_back(static_cast<int>(i));
+        const MotionEstimate back = EstimateFromTracks(
+            &cur, lifted, last_, last_.world_from_cam.inverse() * world_from_cur_pred, &again);
+        r.times = again.times;
+        reason = CheckMotion(options_.verify, back);
+        if (reason.empty()) last_from_cur = back.prev_from_cur.inverse();
+      } else {
+        // The last frame's SIFT ran above.
+        const MotionEstimate from_last = estimate_aside(last_, &again, &reason);
+        if (reason.empty()) last_from_cur = from_last.prev_from_cur;
+      }
+      if (last_from_cur) {
         const double w = static_cast<double>(r.inliers) / (r.inliers + again.inliers);
         cur.world_from_cam =
-            WeightedMean(cur.world_from_cam, last_.world_from_cam * from_last.prev_from_cur, w);
+            WeightedMean(cur.world_from_cam, last_.world_from_cam * *last_from_cur, w);
       }
     }
     // The velocity is what one estimate measured. After frames aligned by depth it is this

@@ -116,6 +116,11 @@ const std::vector<OdometryParameter> kParameters = {
      "between keyframes, track the keyframe's keypoints (Lucas-Kanade) instead of running SIFT "
      "and matching on every frame (--no-track: SIFT on every frame, as the paper)",
      [](O& o) -> ParameterRef { return &o.track_between_keyframes; }},
+    {"tracking.fusion", "track-fusion",
+     "tracking: a new keyframe's second pose (keyframe fusion) from its keypoints tracked back "
+     "into the tracked frame before it instead of SIFT run there and matched (less CPU, a "
+     "little less accurate; off)",
+     [](O& o) -> ParameterRef { return &o.track_fusion; }},
     {"tracking.window_px", "track-window", "tracking: Lucas-Kanade window side, px",
      [](O& o) -> ParameterRef { return &o.tracking.window_px; }},
     {"tracking.warp", "track-warp",
