@@ -645,7 +645,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
       // frame and average the two verified poses, each weighted by its inliers (an estimate's
       // variance goes as one over its inliers; the last frame's own error is left out). Mean
       // of 12 seeds, fr1/xyz every 2nd ATE: 0.0141 -> 0.0118 m (docs/benchmarks.md).
-      FrameResult again = r;
+      FrameResult again;
       std::string reason;
       std::optional<Rigid3d> last_from_cur;
       if (fuse_by_tracks) {
@@ -657,6 +657,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
         std::vector<int> lifted;
         for (size_t i = 0; i < cur.points.size(); ++i)
           if (cur.points[i]) lifted.push_back(static_cast<int>(i));
+        again = r;  // its counts and times, as estimate_aside's
         const MotionEstimate back = EstimateFromTracks(
             &cur, lifted, last_, last_.world_from_cam.inverse() * world_from_cur_pred, &again);
         r.times = again.times;
