@@ -15,12 +15,6 @@ namespace {
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d m;
-  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return m;
-}
-
 // d(residual)/d(point) of Residual: [a 0 b; 0 a c; 0 0 d].
 struct ResidualJacobian {
   double a, b, c, d;
@@ -57,16 +51,68 @@ void AddWeighted(const double (&J)[Rows][6], const double (&r)[Rows], double w, 
   }
 }
 
-// d(residual)/d(delta) = d(residual)/d(point) * d(point)/d(delta), the first as Residual gives it
-// (its zeros skipped), the second as 3 rows of 6.
-void Chain(const ResidualJacobian& dresidual, const double (&dpoint)[3][6], double (&J)[3][6]) {
-  const auto [a, b, c, d] = dresidual;
-  for (int j = 0; j < 6; ++j) {
-    J[0][j] = a * dpoint[0][j] + b * dpoint[2][j];
-    J[1][j] = a * dpoint[1][j] + c * dpoint[2][j];
-    J[2][j] = d * dpoint[2][j];
+// The normal equations of one side of the pairs, by 3 x 3 blocks: a residual r = D(point) with
+// d(point)/d(delta) = [Hat(x) | -I] (x the point, delta = (omega, v)) adds, with M = w D^T D and
+// m = w D^T r, Hat(x)^T M Hat(x) = -Hat(x) M Hat(x) to the rotation block (rr, upper triangle),
+// Hat(x) M to the rotation-translation block (rt), M to the translation block (tt, upper) and
+// (x cross -m, -m) to the gradient. A residual with d(point)/d(delta) = [-Hat(x) | I] adds the
+// same with -m for m. Summing the 3 x 3 information of each point instead of the rows of its
+// 3 x 6 Jacobian takes about a third of the arithmetic.
+struct SideSums {
+  double rr[3][3] = {}, rt[3][3] = {}, tt[3][3] = {};
+  double gr[3] = {}, gt[3] = {};
+
+  // D = [a 0 b; 0 a c; 0 0 d] (ResidualJacobian), m_sign = +1 for [Hat(x) | -I], -1 for
+  // [-Hat(x) | I].
+  void Add(const Eigen::Vector3d& x, const ResidualJacobian& D, const Eigen::Vector3d& r, double w,
+           double m_sign) {
+    const auto [a, b, c, d] = D;
+    // M = w D^T D, symmetric.
+    const double M[3][3] = {{w * a * a, 0, w * a * b},
+                            {0, w * a * a, w * a * c},
+                            {w * a * b, w * a * c, w * (b * b + c * c + d * d)}};
+    const double m[3] = {m_sign * w * a * r.x(), m_sign * w * a * r.y(),
+                         m_sign * w * (b * r.x() + c * r.y() + d * r.z())};
+    const double hat[3][3] = {{0, -x.z(), x.y()}, {x.z(), 0, -x.x()}, {-x.y(), x.x(), 0}};
+    double A[3][3];  // Hat(x) M
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        A[i][j] = hat[i][0] * M[0][j] + hat[i][1] * M[1][j] + hat[i][2] * M[2][j];
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) {
+        rr[i][j] -= A[i][0] * hat[0][j] + A[i][1] * hat[1][j] + A[i][2] * hat[2][j];
+        tt[i][j] += M[i][j];
+      }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) rt[i][j] += A[i][j];
+    // x cross -m = -(Hat(x) m).
+    for (int i = 0; i < 3; ++i) {
+      gr[i] -= hat[i][0] * m[0] + hat[i][1] * m[1] + hat[i][2] * m[2];
+      gt[i] -= m[i];
+    }
   }
-}
+
+  // H += blocks rotated by R (R X R^T; the gradient R g), into H's upper triangle.
+  void AddTo(const Eigen::Matrix3d& R, Mat6* H, Vec6* g) const {
+    const auto full = [](const double(&x)[3][3], bool symmetric) {
+      Eigen::Matrix3d m;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m(i, j) = symmetric && j < i ? x[j][i] : x[i][j];
+      return m;
+    };
+    const Eigen::Matrix3d Hrr = R * full(rr, true) * R.transpose();
+    const Eigen::Matrix3d Hrt = R * full(rt, false) * R.transpose();
+    const Eigen::Matrix3d Htt = R * full(tt, true) * R.transpose();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        if (j >= i) (*H)(i, j) += Hrr(i, j), (*H)(3 + i, 3 + j) += Htt(i, j);
+        (*H)(i, 3 + j) += Hrt(i, j);
+      }
+    }
+    g->head<3>() += R * Eigen::Vector3d(gr[0], gr[1], gr[2]);
+    g->tail<3>() += R * Eigen::Vector3d(gt[0], gt[1], gt[2]);
+  }
+};
 
 double Huber(double e, double k) { return e <= k ? 0.5 * e * e : k * (e - 0.5 * k); }
 
@@ -95,7 +141,12 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
       AddWeighted(rows, res, e <= k ? 1.0 : k / e, H, g);
     }
   }
-  const Eigen::Matrix3d Rt = T.linear().transpose();
+  // The pairs' residuals both ways: the cur point seen from prev (q; d(q)/d(delta) = [-Hat(q) |
+  // I] for Exp(delta) q ~ q + omega x q + v) and the prev point seen from cur (s; T^-1 Exp(-delta)
+  // p ~ s + R^T(p x omega - v), d(s)/d(delta) = R^T [Hat(p) | -I] = [Hat(R^T p) | -I] (R^T, R^T):
+  // summed with x = R^T p and rotated by R once at the end).
+  const Eigen::Matrix3d R = T.linear(), Rt = R.transpose();
+  SideSums in_prev, in_cur;
   for (int k : idx) {
     const PointPair& p = pairs[k];
     const Eigen::Vector3d q = T * p.p_cur;                        // cur point in prev
@@ -104,35 +155,19 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
     ResidualJacobian Jq, Js;
     const Eigen::Vector3d rq = Residual(o, f, q, p.p_prev, H ? &Jq : nullptr);
     const Eigen::Vector3d rs = Residual(o, f, s, p.p_cur, H ? &Js : nullptr);
-    for (int side = 0; side < 2; ++side) {
-      const Eigen::Vector3d& r = side == 0 ? rq : rs;
-      const double e = r.norm();
-      cost += Huber(e, o.huber_sigmas);
-      if (!H) continue;
-      const double w = e <= o.huber_sigmas ? 1.0 : o.huber_sigmas / e;  // IRLS weight
-      double dpoint[3][6];                                              // d(point)/d(delta)
-      if (side == 0) {
-        // Exp(d) q ~ q + w x q + v: [-Hat(q) | I].
-        const Eigen::Matrix3d minus_hat = -Hat(q);
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) {
-            dpoint[i][j] = minus_hat(i, j);
-            dpoint[i][j + 3] = i == j ? 1 : 0;
-          }
-      } else {
-        // T^-1 Exp(-d) p ~ s + R^T(p x w - v): [R^T Hat(p) | -R^T].
-        const Eigen::Matrix3d RtHat = Rt * Hat(p.p_prev);
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) {
-            dpoint[i][j] = RtHat(i, j);
-            dpoint[i][j + 3] = -Rt(i, j);
-          }
-      }
-      double J[3][6];
-      Chain(side == 0 ? Jq : Js, dpoint, J);
-      const double res[3] = {r.x(), r.y(), r.z()};
-      AddWeighted(J, res, w, H, g);
-    }
+    const double eq = rq.norm(), es = rs.norm();
+    cost += Huber(eq, o.huber_sigmas);
+    cost += Huber(es, o.huber_sigmas);
+    if (!H) continue;
+    // IRLS weights.
+    const double wq = eq <= o.huber_sigmas ? 1.0 : o.huber_sigmas / eq;
+    const double ws = es <= o.huber_sigmas ? 1.0 : o.huber_sigmas / es;
+    in_prev.Add(q, Jq, rq, wq, -1);
+    in_cur.Add(Rt * p.p_prev, Js, rs, ws, 1);
+  }
+  if (H) {
+    in_prev.AddTo(Eigen::Matrix3d::Identity(), H, g);
+    in_cur.AddTo(R, H, g);
   }
   if (H) H->triangularView<Eigen::StrictlyLower>() = H->transpose();
   const size_t n = idx.size() + (dense ? dense->size() : 0);
