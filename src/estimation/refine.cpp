@@ -146,6 +146,7 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
   // p ~ s + R^T(p x omega - v), d(s)/d(delta) = R^T [Hat(p) | -I] = [Hat(R^T p) | -I] (R^T, R^T):
   // summed with x = R^T p and rotated by R once at the end).
   const Eigen::Matrix3d R = T.linear(), Rt = R.transpose();
+  const Eigen::Vector3d Rt_t = Rt * T.translation();
   SideSums in_prev, in_cur;
   for (int k : idx) {
     const PointPair& p = pairs[k];
@@ -163,13 +164,13 @@ double Evaluate(const RefineOptions& o, double f, const std::vector<PointPair>& 
     const double wq = eq <= o.huber_sigmas ? 1.0 : o.huber_sigmas / eq;
     const double ws = es <= o.huber_sigmas ? 1.0 : o.huber_sigmas / es;
     in_prev.Add(q, Jq, rq, wq, -1);
-    in_cur.Add(Rt * p.p_prev, Js, rs, ws, 1);
+    in_cur.Add(s + Rt_t, Js, rs, ws, 1);  // R^T p
   }
   if (H) {
     in_prev.AddTo(Eigen::Matrix3d::Identity(), H, g);
     in_cur.AddTo(R, H, g);
+    H->triangularView<Eigen::StrictlyLower>() = H->transpose();
   }
-  if (H) H->triangularView<Eigen::StrictlyLower>() = H->transpose();
   const size_t n = idx.size() + (dense ? dense->size() : 0);
   return n == 0 ? 0 : cost / static_cast<double>(n);
 }
