@@ -37,13 +37,19 @@ Eigen::Vector3d ColorCenterInIr(const Calibration& c) {
 }
 
 Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
+  const Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  return NormalizeIr(c, uv_ir, distorted);
+}
+
+Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir,
+                            const Eigen::Vector2d& start) {
   Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
   if (!HasDistortion(c)) return distorted;
-  // Newton's method on Distort(x) = distorted from x = distorted: 3-4 steps to a step below
+  // Newton's method on Distort(x) = distorted: from x = distorted 3-4 steps to a step below
   // 1e-13 (a billionth of a pixel), where the fixed-point iteration x += distorted - Distort(x)
   // contracts only by the distortion's slope (about 0.3 in a Kinect image's corners).
   const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
-  Eigen::Vector2d x = distorted;
+  Eigen::Vector2d x = start;
   for (int i = 0; i < 20; ++i) {
     const double r2 = x.squaredNorm(), radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
     const double slope = 2 * (k1 + r2 * (2 * k2 + 3 * r2 * k3));  // d radial / d x, over x

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "rgbdvo/estimation/refine.hpp"
+#include "rgbdvo/sensor/camera.hpp"
 #include "test_support.hpp"
 
 using namespace rgbdvo;
@@ -134,4 +135,24 @@ TEST_CASE("Refinement with the depth term pins a motion that few noisy feature p
         0.35 * TranslationError(features_only, f.prev_from_cur));
   CHECK(RotationErrorDeg(with_depth, f.prev_from_cur) <
         0.35 * RotationErrorDeg(features_only, f.prev_from_cur));
+}
+
+TEST_CASE("DepthRays holds each pixel's undistorted ray, as NormalizeIr gives it", "[depth_term]") {
+  Calibration c;  // TUM fr1 (Sturm et al. 2012): strong radial distortion in the corners
+  c.fx = 517.3;
+  c.fy = 516.5;
+  c.cx = 318.6;
+  c.cy = 255.3;
+  c.dist_ir = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
+  const cv::Mat rays = DepthRays(c, {640, 480});
+  double worst = 0, distortion = 0;
+  for (int v = 0; v < rays.rows; ++v)
+    for (int u = 0; u < rays.cols; ++u) {
+      const Eigen::Vector2d x = NormalizeIr(c, {u, v});
+      const cv::Vec2d& r = rays.at<cv::Vec2d>(v, u);
+      worst = std::max({worst, std::abs(r[0] - x.x()), std::abs(r[1] - x.y())});
+      distortion = std::max(distortion, std::abs(r[0] - (u - c.cx) / c.fx));
+    }
+  CHECK(worst < 1e-14);       // the same root (a billionth of a pixel is 2e-12 here)
+  CHECK(distortion > 0.005);  // and the table is not the pinhole's (3 px off in the corners)
 }

@@ -31,8 +31,11 @@ Eigen::Vector2d IrToColor(const Calibration& calib, const Eigen::Vector2d& uv_ir
 Eigen::Vector3d ColorCenterInIr(const Calibration& calib);
 
 // The undistorted normalised coordinates (x, y) = K_ir^-1 [u, v, 1] of IR pixel uv_ir, with
-// dist_ir removed (fixed-point inversion of OpenCV's model, as cv::undistortPoints does).
+// dist_ir removed (OpenCV's model inverted by Newton's method, from the distorted coordinates).
 Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_ir);
+// The same, Newton's method started from `start` (a nearby pixel's result: fewer steps).
+Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_ir,
+                            const Eigen::Vector2d& start);
 
 // Paper eq. 4 (plus the lens distortion the paper neglects, when dist_ir is set): X = depth *
 // K_ir^-1 [u_ir, v_ir, 1]^T. `depth_m` is the Z coordinate (the Kinect and TUM depth images store
