@@ -14,7 +14,7 @@ cv::Mat DepthRays(const Calibration& calib, cv::Size size) {
   // own start is off by the whole distortion (3 px in TUM fr1's corners): a 640 x 480 table in
   // 117 instead of 180 M instructions, the same rays to the last bit or two.
   for (int v = 0; v < size.height; ++v) {
-    Eigen::Vector2d before, last;
+    Eigen::Vector2d before = Eigen::Vector2d::Zero(), last = before;  // set at u = 0 and 1
     for (int u = 0; u < size.width; ++u) {
       const Eigen::Vector2d xy =
           u < 2 ? NormalizeIr(calib, {u, v}) : NormalizeIr(calib, {u, v}, 2 * last - before);
