@@ -36,18 +36,14 @@ Eigen::Vector3d ColorCenterInIr(const Calibration& c) {
   return Eigen::Vector3d(c.s_u / c.fx, c.s_v / c.fy, 0);
 }
 
-Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
-  const Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
-  return NormalizeIr(c, uv_ir, distorted);
-}
+namespace {
 
-Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir,
-                            const Eigen::Vector2d& start) {
-  Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
-  if (!HasDistortion(c)) return distorted;
-  // Newton's method on Distort(x) = distorted: from x = distorted 3-4 steps to a step below
-  // 1e-13 (a billionth of a pixel), where the fixed-point iteration x += distorted - Distort(x)
-  // contracts only by the distortion's slope (about 0.3 in a Kinect image's corners).
+// The root of Distort(x) = distorted by Newton's method from x = start: from x = distorted 3-4
+// steps to a step below 1e-13 (a billionth of a pixel), where the fixed-point iteration
+// x += distorted - Distort(x) contracts only by the distortion's slope (about 0.3 in a Kinect
+// image's corners).
+Eigen::Vector2d Undistort(const Calibration& c, const Eigen::Vector2d& distorted,
+                          const Eigen::Vector2d& start) {
   const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
   Eigen::Vector2d x = start;
   for (int i = 0; i < 20; ++i) {
@@ -64,6 +60,19 @@ Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir,
     if (step.squaredNorm() < 1e-26) break;
   }
   return x;
+}
+
+}  // namespace
+
+Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
+  Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  return HasDistortion(c) ? Undistort(c, distorted, distorted) : distorted;
+}
+
+Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir,
+                            const Eigen::Vector2d& start) {
+  Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  return HasDistortion(c) ? Undistort(c, distorted, start) : distorted;
 }
 
 Eigen::Vector3d BackProject(const Calibration& c, const Eigen::Vector2d& uv_ir, double depth_m) {

@@ -5,6 +5,8 @@
 #include <random>
 
 #include "rgbdvo/estimation/refine.hpp"
+#include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/sensor/calibration_catalog.hpp"
 #include "rgbdvo/sensor/camera.hpp"
 #include "test_support.hpp"
 
@@ -138,12 +140,8 @@ TEST_CASE("Refinement with the depth term pins a motion that few noisy feature p
 }
 
 TEST_CASE("DepthRays holds each pixel's undistorted ray, as NormalizeIr gives it", "[depth_term]") {
-  Calibration c;  // TUM fr1 (Sturm et al. 2012): strong radial distortion in the corners
-  c.fx = 517.3;
-  c.fy = 516.5;
-  c.cx = 318.6;
-  c.cy = 255.3;
-  c.dist_ir = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
+  // TUM fr1 (Sturm et al. 2012): strong radial distortion in the corners.
+  const Calibration c = LoadCalibration(FindCalibration("tum_fr1"));
   const cv::Mat rays = DepthRays(c, {640, 480});
   double worst = 0, distortion = 0;
   for (int v = 0; v < rays.rows; ++v)
