@@ -3,9 +3,9 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
-#include <opencv2/highgui.hpp>
 
 #include "commands.hpp"
+#include "opencv_window.hpp"
 #include "rgbdvo/calibrate/auto_calibrate.hpp"
 #include "rgbdvo/calibrate/calibrate.hpp"
 #include "rgbdvo/calibrate/calibration_clicker.hpp"
@@ -119,12 +119,12 @@ int Interactive(const CalibrateArgs& a) {
   std::cout << "# source: " << source->Describe() << "\n# window '" << kWindow << "': pairs go to "
             << pairs_path << ", calibration to " << a.out << std::endl;
 
-  cv::namedWindow(kWindow, cv::WINDOW_AUTOSIZE | cv::WINDOW_GUI_NORMAL);
-  cv::setMouseCallback(kWindow, OnMouse, &clicker);
+  window::NamedWindow(kWindow, cv::WINDOW_AUTOSIZE | cv::WINDOW_GUI_NORMAL);
+  window::SetMouseCallback(kWindow, OnMouse, &clicker);
   for (;;) {
-    cv::imshow(kWindow, clicker.Render());
-    const int key = cv::waitKey(20);
-    if (cv::getWindowProperty(kWindow, cv::WND_PROP_VISIBLE) < 1) break;  // window closed
+    window::Show(kWindow, clicker.Render());
+    const int key = window::WaitKey(20);
+    if (window::GetProperty(kWindow, cv::WND_PROP_VISIBLE) < 1) break;  // window closed
     const ClickerAction action = clicker.Key(key);
     for (const std::string& line : clicker.TakeLog()) std::cout << line << std::endl;
     if (action == ClickerAction::kQuit) break;
@@ -147,7 +147,7 @@ int Interactive(const CalibrateArgs& a) {
       std::cout << "frame " << index << (last ? " (last)" : "") << std::endl;
     }
   }
-  cv::destroyAllWindows();
+  window::DestroyAll();
   if (clicker.dirty()) std::cout << "quit without saving the last changes" << std::endl;
   return 0;
 }

@@ -74,12 +74,17 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-# OpenCV's image codecs are loaded when first needed (src/io/opencv_codecs.cpp), not linked, so
-# dpkg-shlibdeps does not see them: their package, named after the library's soname.
-get_target_property(RGBDVO_IMGCODECS_SONAME opencv_imgcodecs IMPORTED_SONAME_RELEASE)
-if(RGBDVO_IMGCODECS_SONAME MATCHES "^libopencv_imgcodecs\\.so\\.([0-9]+)$")
-  set(CPACK_DEBIAN_PACKAGE_DEPENDS "libopencv-imgcodecs${CMAKE_MATCH_1}")
-endif()
+# OpenCV's image codecs and window library are loaded when first needed (src/io/opencv_codecs.cpp,
+# apps/opencv_window.cpp), not linked, so dpkg-shlibdeps does not see them: their packages, named
+# after the libraries' sonames.
+set(RGBDVO_LOADED_PACKAGES "")
+foreach(module imgcodecs highgui)
+  get_target_property(soname opencv_${module} IMPORTED_SONAME_RELEASE)
+  if(soname MATCHES "^libopencv_${module}\\.so\\.([0-9]+)$")
+    list(APPEND RGBDVO_LOADED_PACKAGES "libopencv-${module}${CMAKE_MATCH_1}")
+  endif()
+endforeach()
+list(JOIN RGBDVO_LOADED_PACKAGES ", " CPACK_DEBIAN_PACKAGE_DEPENDS)
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gnuplot-nox")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libfreenect-bin")
 include(CPack)
