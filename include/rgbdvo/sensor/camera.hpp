@@ -36,6 +36,10 @@ Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_
 // The same, Newton's method started from `start` (a nearby pixel's result: fewer steps).
 Eigen::Vector2d NormalizeIr(const Calibration& calib, const Eigen::Vector2d& uv_ir,
                             const Eigen::Vector2d& start);
+// NormalizeIr of the n pixels (u, v), u = 0 .. n - 1, of one image row, pixel u's Newton's method
+// started from start[u]; the same results as one at a time, the pixels' iterations interleaved.
+void NormalizeIrRow(const Calibration& calib, int v, int n, const Eigen::Vector2d* start,
+                    Eigen::Vector2d* out);
 
 // Paper eq. 4 (plus the lens distortion the paper neglects, when dist_ir is set): X = depth *
 // K_ir^-1 [u_ir, v_ir, 1]^T. `depth_m` is the Z coordinate (the Kinect and TUM depth images store

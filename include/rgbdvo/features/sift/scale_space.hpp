@@ -5,6 +5,7 @@
 // keypoints can be described after all octaves are searched.
 
 #include <cmath>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -52,8 +53,11 @@ class ScaleSpace {
   void Build(int index, size_t offset, int rows, int cols);
   ScaleSpaceOptions options_;
   std::vector<double> level_sigmas_;  // incremental blur from level i - 1 to level i
-  std::vector<float> storage_;        // every level of every octave, reused from image to image
-  size_t next_offset_ = 0;            // where in storage_ the next octave goes
+  // Every level of every octave, reused from image to image; not zeroed (every level is written
+  // before it is read).
+  std::unique_ptr<float[]> storage_;
+  size_t storage_size_ = 0;
+  size_t next_offset_ = 0;  // where in storage_ the next octave goes
   cv::Mat base_, scratch_;
   std::vector<Octave> octaves_;
 };
