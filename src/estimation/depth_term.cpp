@@ -11,24 +11,23 @@ namespace rgbdvo {
 cv::Mat DepthRays(const Calibration& calib, cv::Size size) {
   cv::Mat rays(size, CV_64FC2);
   // Each pixel's Newton iteration starts where the rays of the two pixels above it extrapolate
-  // to, off only by the distortion's curvature over a pixel, where NormalizeIr's own start is
-  // off by the whole distortion (3 px in TUM fr1's corners); in the first two rows, where its two
-  // left neighbours' rays do. Started from the rows above, the pixels of a row are independent
-  // and NormalizeIrRow interleaves their iterations.
+  // to, off only by the distortion's curvature over a pixel, where NormalizeIr's own start (the
+  // distorted coordinates) is off by the whole distortion (3 px in TUM fr1's corners); the first
+  // two rows start from NormalizeIr's rays. Started from the rows above, the pixels of a row are
+  // independent and NormalizeIrRow interleaves their iterations.
   std::vector<Eigen::Vector2d> start(size.width), xy(size.width);
   for (int v = 0; v < size.height; ++v) {
-    cv::Vec2d* row = rays.ptr<cv::Vec2d>(v);
-    if (v < 2) {
-      for (int u = 0; u < size.width; ++u)
-        xy[u] = u < 2 ? NormalizeIr(calib, {u, v})
-                      : NormalizeIr(calib, {u, v}, 2 * xy[u - 1] - xy[u - 2]);
-    } else {
-      const cv::Vec2d* above = rays.ptr<cv::Vec2d>(v - 1);
-      const cv::Vec2d* above2 = rays.ptr<cv::Vec2d>(v - 2);
-      for (int u = 0; u < size.width; ++u)
-        start[u] = {2 * above[u][0] - above2[u][0], 2 * above[u][1] - above2[u][1]};
-      NormalizeIrRow(calib, v, size.width, start.data(), xy.data());
+    for (int u = 0; u < size.width; ++u) {
+      if (v < 2) {
+        start[u] = NormalizeIr(calib, {u, v});
+      } else {
+        const cv::Vec2d &above = rays.at<cv::Vec2d>(v - 1, u),
+                        &above2 = rays.at<cv::Vec2d>(v - 2, u);
+        start[u] = {2 * above[0] - above2[0], 2 * above[1] - above2[1]};
+      }
     }
+    NormalizeIrRow(calib, v, size.width, start.data(), xy.data());
+    cv::Vec2d* row = rays.ptr<cv::Vec2d>(v);
     for (int u = 0; u < size.width; ++u) row[u] = {xy[u].x(), xy[u].y()};
   }
   return rays;

@@ -101,6 +101,11 @@ void Undistort(const Calibration& c, const double* tx, const double* ty, double*
   }
 }
 
+// K_ir^-1 [u, v, 1]: the pixel's normalised coordinates, still distorted.
+Eigen::Vector2d Distorted(const Calibration& c, const Eigen::Vector2d& uv_ir) {
+  return {(uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy};
+}
+
 Eigen::Vector2d Undistort(const Calibration& c, const Eigen::Vector2d& distorted,
                           const Eigen::Vector2d& start) {
   double x = start.x(), y = start.y();
@@ -111,38 +116,37 @@ Eigen::Vector2d Undistort(const Calibration& c, const Eigen::Vector2d& distorted
 }  // namespace
 
 Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir) {
-  Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  const Eigen::Vector2d distorted = Distorted(c, uv_ir);
   return HasDistortion(c) ? Undistort(c, distorted, distorted) : distorted;
 }
 
 Eigen::Vector2d NormalizeIr(const Calibration& c, const Eigen::Vector2d& uv_ir,
                             const Eigen::Vector2d& start) {
-  Eigen::Vector2d distorted((uv_ir.x() - c.cx) / c.fx, (uv_ir.y() - c.cy) / c.fy);
+  const Eigen::Vector2d distorted = Distorted(c, uv_ir);
   return HasDistortion(c) ? Undistort(c, distorted, start) : distorted;
 }
 
 void NormalizeIrRow(const Calibration& c, int v, int n, const Eigen::Vector2d* start,
                     Eigen::Vector2d* out) {
   constexpr int kLanes = 8;  // 8 measured faster than 4 (a 640 x 480 table in 10 against 12 ms)
-  const double row_y = (v - c.cy) / c.fy;
-  const auto row_x = [&](int u) { return (u - c.cx) / c.fx; };
   if (!HasDistortion(c)) {
-    for (int u = 0; u < n; ++u) out[u] = {row_x(u), row_y};
+    for (int u = 0; u < n; ++u) out[u] = Distorted(c, {u, v});
     return;
   }
   int u = 0;
   for (; u + kLanes <= n; u += kLanes) {
     double tx[kLanes], ty[kLanes], x[kLanes], y[kLanes];
     for (int k = 0; k < kLanes; ++k) {
-      tx[k] = row_x(u + k);
-      ty[k] = row_y;
+      const Eigen::Vector2d distorted = Distorted(c, {u + k, v});
+      tx[k] = distorted.x();
+      ty[k] = distorted.y();
       x[k] = start[u + k].x();
       y[k] = start[u + k].y();
     }
     Undistort<kLanes>(c, tx, ty, x, y);
     for (int k = 0; k < kLanes; ++k) out[u + k] = {x[k], y[k]};
   }
-  for (; u < n; ++u) out[u] = Undistort(c, {row_x(u), row_y}, start[u]);
+  for (; u < n; ++u) out[u] = Undistort(c, Distorted(c, {u, v}), start[u]);
 }
 
 Eigen::Vector3d BackProject(const Calibration& c, const Eigen::Vector2d& uv_ir, double depth_m) {
