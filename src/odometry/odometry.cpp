@@ -132,12 +132,12 @@ Odometry::Odometry(const OdometryOptions& options, const Calibration& calib)
   if (options_.gravity_correction) gravity_.emplace(options_.gravity);
 }
 
-FrameResult Odometry::Process(const Frame& frame) {
-  if (ExtractsLazily()) return InColorCamera(Track(frame, std::nullopt));
+FrameResult Odometry::Process(Frame frame) {
+  if (ExtractsLazily()) return InColorCamera(Track(std::move(frame), std::nullopt));
   const Stopwatch t0;
   Features features = extractor_.Extract(frame.bgr);
   const double seconds = t0.Seconds();
-  FrameResult r = Process(frame, std::move(features));
+  FrameResult r = Process(std::move(frame), std::move(features));
   r.times.features = seconds;
   return r;
 }
@@ -225,6 +225,13 @@ std::vector<float> PredictionErrors(const std::vector<std::optional<Eigen::Vecto
         static_cast<float>((*predicted[m.queryIdx] - Eigen::Vector2d(pt.x, pt.y)).norm()));
   }
   return errors;
+}
+
+// True when `image` is the only header of its buffer (allocated by OpenCV, continuous): kept, it
+// cannot change under the odometry. A buffer someone else still refers to may be written again
+// (a caller reading the next frame into the same cv::Mat): that one is copied.
+bool SoleOwner(const cv::Mat& image) {
+  return image.u != nullptr && image.u->refcount == 1 && image.isContinuous();
 }
 
 // The value below which a fraction q of `values` lie (nearest rank); 0 for none.
@@ -421,8 +428,8 @@ MotionEstimate Odometry::EstimateFromTracks(Reference* ref, const std::vector<in
   return motion;
 }
 
-FrameResult Odometry::Process(const Frame& frame, Features features) {
-  return InColorCamera(Track(frame, std::move(features)));
+FrameResult Odometry::Process(Frame frame, Features features) {
+  return InColorCamera(Track(std::move(frame), std::move(features)));
 }
 
 FrameResult Odometry::InColorCamera(FrameResult r) const {
@@ -440,7 +447,7 @@ FrameResult Odometry::InColorCamera(FrameResult r) const {
   return r;
 }
 
-FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features) {
+FrameResult Odometry::Track(Frame frame, std::optional<Features> features) {
   FrameResult r;
   r.frame = frame.index;
   // The pose is the camera's at the colour image's time: the keypoints are seen then, and their
@@ -485,7 +492,7 @@ FrameResult Odometry::Track(const Frame& frame, std::optional<Features> features
   cur.frame = frame.index;
   cur.color_timestamp = frame.color_timestamp;
   if (options_.depth_fallback || options_.depth_term_step > 0 || options_.track_between_keyframes)
-    cur.depth_m = frame.depth_m.clone();
+    cur.depth_m = SoleOwner(frame.depth_m) ? frame.depth_m : frame.depth_m.clone();
   cur.depth_from_cam = depth_from_color;
   if (options_.depth_term_step > 0) {
     if (depth_rays_.size() != frame.depth_m.size())

@@ -273,10 +273,10 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     }
     FrameResult result;
     if (d.features) {
-      result = odometry.Process(*d.frame, std::move(*d.features));
+      result = odometry.Process(std::move(*d.frame), std::move(*d.features));
       result.times.features = d.feature_seconds;
     } else {
-      result = odometry.Process(*d.frame);  // SIFT where needed, timed by the odometry
+      result = odometry.Process(std::move(*d.frame));  // SIFT where needed, timed by it
     }
     const Stopwatch t0;
     for (TrajectoryWriter* w : writers) w->Write(result);

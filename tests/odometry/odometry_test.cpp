@@ -400,8 +400,9 @@ TEST_CASE("A prior off by most of the radius is corrected by matching again arou
   CHECK(RigidNear(again.world_from_cam, path[2], 0.2, 0.005));
   // The prediction error is still measured from the prior the frame was predicted with.
   REQUIRE(!again.prediction_error_px.empty());
+  const double radius_px = OdometryOptions().guided_radius_px;
   CHECK(*std::max_element(again.prediction_error_px.begin(), again.prediction_error_px.end()) >
-        0.5 * OdometryOptions{}.guided_radius_px);
+        0.5 * radius_px);
 }
 
 TEST_CASE("A few-inlier estimate that matching around it does not reproduce goes to brute force") {
@@ -510,7 +511,47 @@ TEST_CASE("A new keyframe's pose is measured against the last frame too") {
   INFO("first difference at frame " << first_difference);
   CHECK(first_difference > 1);
   CHECK(!PresetOptions("paper").fuse_keyframe_pose);
-  CHECK(OdometryOptions{}.fuse_keyframe_pose);
+  const bool fuse = OdometryOptions().fuse_keyframe_pose;
+  CHECK(fuse);
+}
+
+TEST_CASE("A frame's depth image is kept as it was when the caller writes the next into it") {
+  // The odometry keeps a frame's depth image (the frame before a new keyframe is lifted from it
+  // later, for the fusion). Handed over (std::move) it is kept without a copy; a caller that
+  // reads every frame into the same cv::Mat keeps writing into the buffer it passed, so there
+  // the odometry must keep a copy: both runs give the same poses, bit for bit.
+  const SyntheticScene scene;
+  const PinholeCamera cam;
+  const std::vector<Rigid3d> path = MakeSmoothPath(40, 0.02, 1.5);
+  const OdometryOptions defaults;
+  std::vector<Rigid3d> handed_over;
+  int keyframes = 0;
+  {
+    Odometry odometry(defaults, CalibFor(cam));
+    for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+      const FrameResult r = odometry.Process(Render(scene, cam, path[i], i));
+      REQUIRE(HasFeatureEstimate(r.status));
+      keyframes += r.keyframe ? 1 : 0;
+      handed_over.push_back(r.world_from_cam);
+    }
+  }
+  INFO(keyframes << " keyframes");
+  REQUIRE(keyframes >= 3);  // the fusion lifts the frame before each from its kept depth
+  Odometry odometry(defaults, CalibFor(cam));
+  Frame reused;
+  for (int i = 0; i < static_cast<int>(path.size()); ++i) {
+    const Frame f = Render(scene, cam, path[i], i);
+    const uchar* buffer = reused.depth_m.data;
+    reused.index = f.index;
+    reused.timestamp = f.timestamp;
+    reused.color_timestamp = f.color_timestamp;
+    f.bgr.copyTo(reused.bgr);
+    f.depth_m.copyTo(reused.depth_m);
+    if (i > 0) REQUIRE(reused.depth_m.data == buffer);  // written in place
+    const FrameResult r = odometry.Process(reused);
+    INFO("frame " << i);
+    CHECK(r.world_from_cam.matrix() == handed_over[i].matrix());
+  }
 }
 
 TEST_CASE("The paper preset matches by brute force") {
@@ -961,5 +1002,6 @@ TEST_CASE("A new keyframe's second pose is tracked back into the tracked frame b
   for (size_t i = 0; i < path.size(); ++i)
     if (!tracked_back.poses[i].isApprox(single.poses[i], 1e-12)) ++differ;
   CHECK(differ > 0);
-  CHECK(!OdometryOptions{}.track_fusion);
+  const bool track_fusion = OdometryOptions().track_fusion;
+  CHECK(!track_fusion);
 }

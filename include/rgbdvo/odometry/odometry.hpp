@@ -234,10 +234,12 @@ struct FrameResult {
 class Odometry {
  public:
   Odometry(const OdometryOptions& options, const Calibration& calib);
-  // Extracts features from frame.bgr, then as below.
-  FrameResult Process(const Frame& frame);
+  // Extracts features from frame.bgr, then as below. The odometry keeps the frame's depth
+  // image for the frames after it: a copy, or the image itself where the call holds the only
+  // reference to it (a frame handed over with std::move, whose images nothing else refers to).
+  FrameResult Process(Frame frame);
   // With features already extracted from frame.bgr (e.g. on another thread).
-  FrameResult Process(const Frame& frame, Features features);
+  FrameResult Process(Frame frame, Features features);
   // True when Process(frame) runs SIFT only on the frames that need it
   // (track_between_keyframes): features extracted ahead for every frame would be wasted.
   bool ExtractsLazily() const { return options_.track_between_keyframes; }
@@ -263,7 +265,7 @@ class Odometry {
   // Process in the IR camera's frame, where the tracking works: poses and velocity of the IR
   // camera. Process moves them to the colour camera.
   // features: nullopt when SIFT is to run only where needed (track_between_keyframes).
-  FrameResult Track(const Frame& frame, std::optional<Features> features);
+  FrameResult Track(Frame frame, std::optional<Features> features);
 
   struct Reference {
     Features features;
