@@ -58,12 +58,9 @@ bool ScaleSpace::Begin(const cv::Mat& gray) {
   size_t total = 0;
   for (int r = rows, c = cols; std::min(r, c) >= kMinSide; r /= 2, c /= 2)
     total += planes * static_cast<size_t>(r) * c;
-  if (total > storage_size_) {
-    storage_.reset(new float[total]);
-    storage_size_ = total;
-  }
+  if (total > storage_.size()) storage_ = HugePageBuffer(total);
 
-  cv::Mat level0(rows, cols, CV_32F, storage_.get());
+  cv::Mat level0(rows, cols, CV_32F, storage_.data());
   gray.convertTo(scratch_, CV_32F);
   // The camera image has blur 0.5 (1 in the upsampled image); add what reaches sigma.
   const double have = kInitialBlur * up;
@@ -82,7 +79,7 @@ bool ScaleSpace::Next() {
   const cv::Mat& from = octave().gauss[options_.octave_layers];  // blur 2 sigma: sigma at half size
   const int rows = from.rows / 2, cols = from.cols / 2;
   if (std::min(rows, cols) < kMinSide) return false;
-  cv::Mat level0(rows, cols, CV_32F, storage_.get() + next_offset_);
+  cv::Mat level0(rows, cols, CV_32F, storage_.data() + next_offset_);
   for (int y = 0; y < rows; ++y) {
     const float* src = from.ptr<float>(2 * y);
     float* dst = level0.ptr<float>(y);
@@ -98,7 +95,7 @@ void ScaleSpace::Build(int index, size_t offset, int rows, int cols) {
   Octave o;
   o.index = index;
   o.shift = options_.upsample ? 0.25 : 0.0;
-  float* at = storage_.get() + offset;
+  float* at = storage_.data() + offset;
   o.gauss.resize(S + 3);
   o.dog.resize(S + 2);
   for (int i = 0; i < S + 3; ++i) o.gauss[i] = cv::Mat(rows, cols, CV_32F, at + i * plane);

@@ -9,6 +9,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "rgbdvo/util/huge_page_buffer.hpp"
+
 namespace rgbdvo {
 
 struct ScaleSpaceOptions {
@@ -55,8 +57,7 @@ class ScaleSpace {
   std::vector<double> level_sigmas_;  // incremental blur from level i - 1 to level i
   // Every level of every octave, reused from image to image; not zeroed (every level is written
   // before it is read).
-  std::unique_ptr<float[]> storage_;
-  size_t storage_size_ = 0;
+  HugePageBuffer storage_;
   size_t next_offset_ = 0;  // where in storage_ the next octave goes
   cv::Mat base_, scratch_;
   std::vector<Octave> octaves_;

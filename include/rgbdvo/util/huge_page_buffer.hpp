@@ -1,0 +1,29 @@
+#pragma once
+// A large float buffer that the kernel may back with transparent huge pages (2 MiB). A fresh
+// 4 KiB page costs a page fault when first touched, and on a virtual machine a fault costs about
+// 10 us: the SIFT scale space faulted in some 4300 pages on every run (45 ms, 3 % of fast90's
+// CPU with one thread; docs/benchmarks.md), as huge pages a dozen. The advice is only advice:
+// where the kernel offers no huge pages (THP disabled, another OS) the buffer is an ordinary one.
+
+#include <cstddef>
+#include <memory>
+
+namespace rgbdvo {
+
+class HugePageBuffer {
+ public:
+  HugePageBuffer() = default;
+  // Room for `floats` floats, not initialised; throws std::bad_alloc.
+  explicit HugePageBuffer(size_t floats);
+  float* data() const { return data_.get(); }
+  size_t size() const { return size_; }
+
+ private:
+  struct Free {
+    void operator()(float* p) const;
+  };
+  std::unique_ptr<float[], Free> data_;
+  size_t size_ = 0;
+};
+
+}  // namespace rgbdvo
