@@ -22,8 +22,11 @@ struct RunOptions {
   // Frames read from the source ahead of the odometry at most (decoding, extracting or waiting
   // their turn), raised to the number of workers when smaller; bounds memory. With a live
   // source keep it small: a backlog should wait in the source's queue, where the newest frame
-  // wins (rgbdvo capture uses the number of workers).
-  int queue_frames = 4;
+  // wins (rgbdvo capture uses the number of workers). 2: decoding alone (SIFT runs where the
+  // odometry needs it) keeps well ahead of the odometry; each frame more in flight is 2.7 MB
+  // whose pages are faulted in once more (fast90, 2 workers, 4 -> 2: 10000 -> 8700 page faults,
+  // system time 130 -> 100 ms, the same wall time; SIFT on every frame, --no-track: the same).
+  int queue_frames = 2;
   static constexpr int kMaxAutoThreads = 4;  // more workers gain nothing: decoding is serial
   void Check() const;
   int EffectiveThreads() const;  // threads, with 0 resolved
