@@ -1,6 +1,7 @@
 #include "rgbdvo/features/sift/sift_descriptor.hpp"
 
 #include <array>
+#include <cstdint>
 #include <cstring>
 
 #include "rgbdvo/util/simd.hpp"
@@ -14,6 +15,7 @@ typedef float v8f __attribute__((vector_size(32)));
 typedef int v8i __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
 typedef int v4i __attribute__((vector_size(16)));
+typedef int64_t v2l __attribute__((vector_size(16)));
 constexpr int kWidth = 4;          // spatial bins per side (Lowe: 4)
 constexpr int kBins = 8;           // orientation bins (Lowe: 8)
 constexpr float kBinWidth = 3.0f;  // a spatial bin is 3 sigma wide (OpenCV SIFT_DESCR_SCL_FCTR)
@@ -79,10 +81,52 @@ inline v8f Load(const float* p) {
   return v;
 }
 
-inline v4f Load4(const float* p) {
-  v4f v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
+// p[0] in lanes 0-3, p[1] in lanes 4-7.
+// (The pair is loaded as one 64-bit value: one load into a register, where GCC builds a short
+// vector through the stack.)
+inline v8i Spread(const void* p) {
+  int64_t pair;
+  std::memcpy(&pair, p, sizeof pair);
+  const v4i two = (v4i)v2l{pair, 0};
+  return __builtin_shufflevector(two, two, 0, 0, 0, 0, 1, 1, 1, 1);
+}
+
+// Four floats from p in lanes 0-3 and four from q in lanes 4-7.
+inline v8f Pair(const float* p, const float* q) {
+  v4f lo, hi;
+  std::memcpy(&lo, p, sizeof lo);
+  std::memcpy(&hi, q, sizeof hi);
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+
+// For TwoLanes, per lane o: with GCC, where each lane of (a, b, 0, ...) goes (a to lane o, b to
+// lane o + 1 mod 8, 0 elsewhere); elsewhere, the mask of lane o.
+#if defined(__GNUC__) && !defined(__clang__)
+const std::array<v8i, kBins> kRoute = [] {
+  std::array<v8i, kBins> r;
+  for (int o = 0; o < kBins; ++o)
+    for (int lane = 0; lane < kBins; ++lane)
+      r[o][lane] = lane == o ? 0 : lane == ((o + 1) & (kBins - 1)) ? 1 : 2;
+  return r;
+}();
+#else
+const std::array<v8i, kBins> kLaneMask = [] {
+  std::array<v8i, kBins> m;
+  for (int o = 0; o < kBins; ++o) m[o] = v8i{0, 1, 2, 3, 4, 5, 6, 7} == o;
+  return m;
+}();
+#endif
+
+// An 8-lane vector with a in lane o, b in lane o + 1 (mod 8) and 0 elsewhere: with GCC one
+// permutation of (a, b, 0, ...) (vpermps where the CPU has AVX2); elsewhere (a shuffle by a
+// variable mask is GCC's) the two lanes' masks, two ands and an addition. The same values.
+inline v8f TwoLanes(int o, float a, float b) {
+#if defined(__GNUC__) && !defined(__clang__)
+  return __builtin_shuffle(v8f{a, b, 0, 0, 0, 0, 0, 0}, kRoute[o]);
+#else
+  return (v8f)(kLaneMask[o] & (v8i)(v8f{} + a)) +
+         (v8f)(kLaneMask[(o + 1) & (kBins - 1)] & (v8i)(v8f{} + b));
+#endif
 }
 
 }  // namespace
@@ -180,27 +224,36 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
   }
   //    b) Per sample, the 4 x 4 pixels around it (rows y0 - 1 .. y0 + 2, columns x0 - 1 ..
   //       x0 + 2) as 4 vector loads; the 8 central differences and the bilinear interpolation
-  //       by lane shuffles, each value by the same operations as one at a time.
+  //       by lane shuffles, each value by the same operations as one at a time. Two samples at
+  //       once, one in each half of an 8-lane vector (the shuffles stay within their half).
   float dx[kSamples], dy[kSamples];
-  for (int s = 0; s < kSamples; ++s) {
+  static_assert(kSamples % 2 == 0, "samples are taken in pairs");
+  for (int s = 0; s < kSamples; s += 2) {
     const float* p = data + at[s] - 1;
-    const v4f m = Load4(p - step), a = Load4(p), b = Load4(p + step), c = Load4(p + 2 * step);
+    const float* q = data + at[s + 1] - 1;
+    const v8f m = Pair(p - step, q - step), a = Pair(p, q), b = Pair(p + step, q + step),
+              c = Pair(p + 2 * step, q + 2 * step);
     // (gx00, gx01, gx10, gx11): I(x + 1) - I(x - 1) on rows y0 and y0 + 1.
-    const v4f gx =
-        __builtin_shufflevector(a, b, 2, 3, 6, 7) - __builtin_shufflevector(a, b, 0, 1, 4, 5);
+    const v8f gx = __builtin_shufflevector(a, b, 2, 3, 10, 11, 6, 7, 14, 15) -
+                   __builtin_shufflevector(a, b, 0, 1, 8, 9, 4, 5, 12, 13);
     // (gy00, gy01, gy10, gy11): I(y - 1) - I(y + 1) at columns x0 and x0 + 1.
-    const v4f gy = __builtin_shufflevector(m - b, a - c, 1, 2, 5, 6);
+    const v8f gy = __builtin_shufflevector(m - b, a - c, 1, 2, 9, 10, 5, 6, 13, 14);
     // Columns x0 (left) and x0 + 1 (right) of (gx row y0, gx row y0 + 1, gy ..., gy ...).
-    const v4f left = __builtin_shufflevector(gx, gy, 0, 2, 4, 6);
-    const v4f right = __builtin_shufflevector(gx, gy, 1, 3, 5, 7);
-    const v4f fx = {fxs[s], fxs[s], fxs[s], fxs[s]};
-    const v4f g = left + fx * (right - left);  // (gx0, gx1, gy0, gy1)
-    const v4f g0 = __builtin_shufflevector(g, g, 0, 2, 0, 2);
-    const v4f g1 = __builtin_shufflevector(g, g, 1, 3, 1, 3);
-    const v4f fy = {fys[s], fys[s], fys[s], fys[s]};
-    const v4f d = (v4f)((v4i)(g0 + fy * (g1 - g0)) & mask[s]);  // (dx, dy, dx, dy) or 0
-    dx[s] = d[0];
-    dy[s] = d[1];
+    const v8f left = __builtin_shufflevector(gx, gy, 0, 2, 8, 10, 4, 6, 12, 14);
+    const v8f right = __builtin_shufflevector(gx, gy, 1, 3, 9, 11, 5, 7, 13, 15);
+    const v8f fx = (v8f)Spread(fxs + s);
+    const v8f g = left + fx * (right - left);  // (gx0, gx1, gy0, gy1) of each sample
+    const v8f g0 = __builtin_shufflevector(g, g, 0, 2, 0, 2, 4, 6, 4, 6);
+    const v8f g1 = __builtin_shufflevector(g, g, 1, 3, 1, 3, 5, 7, 5, 7);
+    const v8f fy = (v8f)Spread(fys + s);
+    // (dx, dy, dx, dy) of each sample, or 0.
+    const v8f d = (v8f)((v8i)(g0 + fy * (g1 - g0)) & Spread(mask + s));
+    // (dx, dx', dy, dy'): each pair stored with one move.
+    const v4f out = __builtin_shufflevector(d, d, 0, 4, 1, 5);
+    float pairs[4];
+    std::memcpy(pairs, &out, sizeof out);
+    std::memcpy(dx + s, pairs, 2 * sizeof(float));
+    std::memcpy(dy + s, pairs + 2, 2 * sizeof(float));
   }
   // 2. Weighted magnitude and orientation bin relative to the keypoint's (vectorisable).
   float mag[kSamples], obin[kSamples];
@@ -221,18 +274,10 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
     share1[s] = mag[s] * (obin[s] - lower[s]);
     share0[s] = mag[s] - share1[s];
   }
-  //    b) Lane o0 gets share0, lane o0 + 1 (mod 8) share1, the others 0: the two lanes' masks
-  //       from a table, so that a sample takes two loads, two ands and an addition.
-  static const std::array<v8i, kBins> lane_mask = [] {
-    std::array<v8i, kBins> m;
-    for (int o = 0; o < kBins; ++o) m[o] = v8i{0, 1, 2, 3, 4, 5, 6, 7} == o;
-    return m;
-  }();
+  //    b) Lane o0 gets share0, lane o0 + 1 (mod 8) share1, the others 0 (TwoLanes).
   float split[kSamples][kBins];
   for (int s = 0; s < kSamples; ++s) {
-    const int o0 = lower[s], o1 = (o0 + 1) & (kBins - 1);
-    const v8f v = (v8f)(lane_mask[o0] & (v8i)(v8f{} + share0[s])) +
-                  (v8f)(lane_mask[o1] & (v8i)(v8f{} + share1[s]));
+    const v8f v = TwoLanes(lower[s], share0[s], share1[s]);
     std::memcpy(split[s], &v, sizeof v);
   }
   float hist[kWidth * kWidth * kBins];
