@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <utility>
 
 namespace rgbdvo {
 
@@ -15,6 +16,14 @@ class HugePageBuffer {
   HugePageBuffer() = default;
   // Room for `floats` floats, not initialised; throws std::bad_alloc.
   explicit HugePageBuffer(size_t floats);
+  // Moved from, a buffer is empty (size 0), as a default one.
+  HugePageBuffer(HugePageBuffer&& other) noexcept
+      : data_(std::move(other.data_)), size_(std::exchange(other.size_, 0)) {}
+  HugePageBuffer& operator=(HugePageBuffer&& other) noexcept {
+    data_ = std::move(other.data_);
+    size_ = std::exchange(other.size_, 0);
+    return *this;
+  }
   float* data() const { return data_.get(); }
   size_t size() const { return size_; }
 

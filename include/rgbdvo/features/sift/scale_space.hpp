@@ -5,7 +5,6 @@
 // keypoints can be described after all octaves are searched.
 
 #include <cmath>
-#include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
