@@ -96,12 +96,16 @@ void DelayFrame(int ms) {
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {
   cmd->add_option("--threads", options->threads,
                   "1 = everything on one core (OpenCV's loops too); N >= 2 = N feature workers "
-                  "(decode, and SIFT with --no-track; with tracking a new keyframe's two SIFT "
-                  "runs go side by side) while the main thread matches, estimates and writes in "
-                  "frame order (same results); 0 = automatic: the hardware concurrency, at most " +
+                  "(decode, and SIFT with --no-track) while the main thread matches, estimates "
+                  "and writes in frame order (same results); 0 = automatic: the hardware "
+                  "concurrency, at most " +
                       std::to_string(RunOptions::kMaxAutoThreads))
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--parallel-keyframe-sift", options->parallel_keyframe_sift,
+                "with --threads 2 or more and tracking: run a new keyframe's SIFT and the frame "
+                "before's side by side (shorter keyframe frames; more CPU where the two cores "
+                "slow each other; same results)");
 }
 
 void LimitOpenCvThreads() {

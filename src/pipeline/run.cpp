@@ -173,7 +173,8 @@ std::string RunOptions::Describe() const {
   const int n = EffectiveThreads();
   if (n == 1) return "1 thread";
   return std::to_string(n) + " feature workers + the main thread, at most " +
-         std::to_string(EffectiveQueueFrames()) + " frames read ahead";
+         std::to_string(EffectiveQueueFrames()) + " frames read ahead" +
+         (parallel_keyframe_sift ? ", a new keyframe's two SIFT runs side by side" : "");
 }
 
 void ErrorHistogram::Add(double value) {
@@ -248,7 +249,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
   options.Check();
   RunSummary summary;
   summary.threads = options.EffectiveThreads();
-  odometry.SetThreads(summary.threads);
+  odometry.SetThreads(options.parallel_keyframe_sift ? summary.threads : 1);
   const Stopwatch start;
   double inlier_sum = 0;
   TrackingGaps gaps;

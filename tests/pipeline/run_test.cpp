@@ -58,13 +58,15 @@ class Recorder : public TrajectoryWriter {
 std::vector<FrameResult> RunWith(int threads, int n, int throw_at, std::string* error,
                                  int empty_at = -1, int queue_frames = RunOptions{}.queue_frames,
                                  const OdometryOptions& odometry_options = {},
-                                 RunSummary* summary = nullptr) {
+                                 RunSummary* summary = nullptr,
+                                 bool parallel_keyframe_sift = false) {
   SyntheticSource source(n, throw_at, empty_at);
   Odometry odometry(odometry_options, source.Calib());
   Recorder recorder;
   RunOptions options;
   options.threads = threads;
   options.queue_frames = queue_frames;
+  options.parallel_keyframe_sift = parallel_keyframe_sift;
   try {
     const RunSummary s = RunOdometry(source, odometry, {&recorder}, {}, options);
     CHECK(s.threads == threads);
@@ -112,28 +114,34 @@ TEST_CASE(
   OdometryOptions tracking;
   tracking.track_between_keyframes = true;
   // Keyframes renewed as soon as the tracked inliers fall: a new keyframe and the frame before
-  // it then both need SIFT, which two threads run side by side.
+  // it then both need SIFT, which two threads run one after the other or side by side.
   tracking.keyframe_inlier_ratio = 0.98;
   std::string error;
   RunSummary summary;
   const std::vector<FrameResult> one = RunWith(1, 10, -1, &error, -1, 4, tracking, &summary);
   REQUIRE(one.size() == 10);
-  const std::vector<FrameResult> two = RunWith(2, 10, -1, &error, -1, 4, tracking);
-  CHECK(error.empty());
-  REQUIRE(two.size() == one.size());
+  for (const bool parallel : {false, true}) {
+    INFO("a keyframe's SIFT runs side by side: " << parallel);
+    const std::vector<FrameResult> two =
+        RunWith(2, 10, -1, &error, -1, 4, tracking, nullptr, parallel);
+    CHECK(error.empty());
+    REQUIRE(two.size() == one.size());
+    for (size_t i = 0; i < one.size(); ++i) {
+      INFO("frame " << i);
+      CHECK(two[i].status == one[i].status);
+      CHECK(two[i].features == one[i].features);
+      CHECK(two[i].inliers == one[i].inliers);
+      CHECK(two[i].world_from_cam.matrix() == one[i].world_from_cam.matrix());
+      // SIFT's time is the odometry's own, counted only where it ran.
+      CHECK((one[i].times.features == 0) == (two[i].times.features == 0));
+      CHECK(two[i].sift_runs == one[i].sift_runs);
+    }
+  }
   int without_sift = 0, fused = 0;
-  for (size_t i = 0; i < one.size(); ++i) {
-    INFO("frame " << i);
-    CHECK(two[i].status == one[i].status);
-    CHECK(two[i].features == one[i].features);
-    CHECK(two[i].inliers == one[i].inliers);
-    CHECK(two[i].world_from_cam.matrix() == one[i].world_from_cam.matrix());
-    // SIFT's time is the odometry's own, counted only where it ran.
-    CHECK((one[i].times.features == 0) == (two[i].times.features == 0));
-    CHECK(two[i].sift_runs == one[i].sift_runs);
-    if (one[i].times.features == 0) ++without_sift;
-    // A new keyframe and the frame before it, SIFT on both (side by side with two threads).
-    if (one[i].sift_runs == 2) ++fused;
+  for (const FrameResult& r : one) {
+    if (r.times.features == 0) ++without_sift;
+    // A new keyframe and the frame before it, SIFT on both.
+    if (r.sift_runs == 2) ++fused;
   }
   CHECK(without_sift > 0);
   CHECK(fused > 0);
@@ -258,8 +266,14 @@ TEST_CASE("RunOptions::Check names the field") {
   o.queue_frames = 1;
   CHECK(o.EffectiveThreads() == 3);
   CHECK(o.EffectiveQueueFrames() == 3);  // raised to the number of workers
+  CHECK(o.Describe() == "3 feature workers + the main thread, at most 3 frames read ahead");
+  o.parallel_keyframe_sift = true;
+  CHECK(o.Describe() ==
+        "3 feature workers + the main thread, at most 3 frames read ahead, a "
+        "new keyframe's two SIFT runs side by side");
   o.threads = 1;
   CHECK(o.EffectiveQueueFrames() == 0);
+  CHECK(o.Describe() == "1 thread");
 }
 
 TEST_CASE("ErrorHistogram quantiles are within one bin of the exact ones") {

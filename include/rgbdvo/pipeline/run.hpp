@@ -27,6 +27,14 @@ struct RunOptions {
   // whose pages are faulted in once more (fast90, 2 workers, 4 -> 2: 10000 -> 8700 page faults,
   // system time 130 -> 100 ms, the same wall time; SIFT on every frame, --no-track: the same).
   int queue_frames = 2;
+  // With 2 or more threads and tracking between keyframes: a new keyframe's SIFT and the frame
+  // before's (for the keyframe fusion) run side by side on two threads (Odometry::SetThreads).
+  // Off by default: it shortens those frames, but where the two processors share their memory
+  // or other work runs, the two runs slow each other and cost CPU (docs/benchmarks.md, "A new
+  // keyframe's two SIFT runs one after the other": 2 workers, CPU 0.90-0.94 and wall time
+  // 1.05-1.09 of side by side on an AMD machine; an idle Intel machine ran them side by side
+  // at no CPU cost, wall time 0.78-0.87). The frame rate stays far above 60 fps either way.
+  bool parallel_keyframe_sift = false;
   static constexpr int kMaxAutoThreads = 4;  // more workers gain nothing: decoding is serial
   void Check() const;
   int EffectiveThreads() const;  // threads, with 0 resolved
