@@ -8,9 +8,9 @@
 
 namespace {
 
-// The images' heap advised to huge pages this far: past the heap's peak with two workers
+// The images' heap advised to huge pages this far: twice the heap's peak with two workers
 // (fr1_xyz: 64 MiB). Address space only: a page is taken when first touched.
-constexpr size_t kImageHeapBytes = size_t{256} << 20;
+constexpr size_t kImageHeapBytes = size_t{128} << 20;
 
 int Main(int argc, char** argv) {
   rgbdvo::SetUpImageHeap(kImageHeapBytes);

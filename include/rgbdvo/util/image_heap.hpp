@@ -13,7 +13,8 @@ namespace rgbdvo {
 // heap's next `huge_page_bytes` are advised to transparent huge pages, so that the images'
 // memory is faulted in 2 MiB at a time. Call before any thread starts (mallopt is not
 // thread-safe). Returns the bytes advised: 0 where there is no glibc, no transparent huge
-// pages, or the heap could not grow (the heap then works as before, page by page).
+// pages, or the heap could not grow (the heap then works as before, page by page). At most
+// 512 MiB; the heap is not trimmed below twice huge_page_bytes (or 256 MiB).
 size_t SetUpImageHeap(size_t huge_page_bytes);
 
 }  // namespace rgbdvo
