@@ -79,35 +79,86 @@ std::vector<int> SelectSpread(const std::vector<cv::KeyPoint>& keypoints,
   return chosen;
 }
 
-std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
-                                                    const TrackingPyramid& from,
-                                                    const TrackingPyramid& to,
-                                                    const std::vector<cv::Point2f>& points,
-                                                    const std::vector<cv::Point2f>& guess) {
+namespace {
+
+const cv::TermCriteria kStop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+
+// The forward tracks (found, landed at forward[i]) checked: inside `to`, and with
+// max_back_error_px tracked back from there into `from` to within that of where they started.
+std::vector<std::optional<cv::Point2f>> Landings(const TrackOptions& options,
+                                                 const TrackingPyramid& from,
+                                                 const TrackingPyramid& to,
+                                                 const std::vector<cv::Point2f>& points,
+                                                 const std::vector<cv::Point2f>& forward,
+                                                 const std::vector<uchar>& found) {
   std::vector<std::optional<cv::Point2f>> tracked(points.size());
-  if (points.empty() || from.empty() || to.empty()) return tracked;
   const cv::Size window(options.window_px, options.window_px);
-  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
-  std::vector<cv::Point2f> forward = guess, back = points;
-  std::vector<uchar> found, found_back;
-  std::vector<float> error;
-  cv::calcOpticalFlowPyrLK(from, to, points, forward, found, error, window, options.levels, stop,
-                           cv::OPTFLOW_USE_INITIAL_FLOW);
+  std::vector<cv::Point2f> back = points;
+  std::vector<uchar> found_back;
+  // No error output: OpenCV would compute each track's mean residual over its window once more,
+  // and drop the tracks whose window ends more than its width outside the image (window_near,
+  // below: the forward tracks' own check is stricter).
   const bool check_back = options.max_back_error_px > 0;
   if (check_back)
-    cv::calcOpticalFlowPyrLK(to, from, forward, back, found_back, error, window, options.levels,
-                             stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+    cv::calcOpticalFlowPyrLK(to, from, forward, back, found_back, cv::noArray(), window,
+                             options.levels, kStop, cv::OPTFLOW_USE_INITIAL_FLOW);
   const cv::Size size = to.front().size();
+  const float half = static_cast<float>(options.window_px - 1) * 0.5f;
+  const auto window_near = [&](const cv::Point2f& p, cv::Size image) {
+    const int x = cvFloor(p.x - half), y = cvFloor(p.y - half);
+    return x >= -options.window_px && x < image.width && y >= -options.window_px &&
+           y < image.height;
+  };
   const double max_back_sq = options.max_back_error_px * options.max_back_error_px;
   for (size_t i = 0; i < points.size(); ++i) {
     const cv::Point2f& p = forward[i];
-    if (!found[i] || (check_back && !found_back[i]) ||
+    if (!found[i] ||
+        (check_back && (!found_back[i] || !window_near(back[i], from.front().size()))) ||
         !(p.x >= 0 && p.y >= 0 && p.x <= size.width - 1 && p.y <= size.height - 1))
       continue;
     const cv::Point2f d = back[i] - points[i];
     if (!check_back || d.x * d.x + d.y * d.y <= max_back_sq) tracked[i] = p;
   }
   return tracked;
+}
+
+}  // namespace
+
+LkWindows MakeTrackingWindows(const TrackOptions& options, const TrackingPyramid& from,
+                              const std::vector<cv::Point2f>& points) {
+  return MakeLkWindows(from, cv::Size(options.window_px, options.window_px), options.levels,
+                       points);
+}
+
+std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
+                                                    const LkWindows& from,
+                                                    const TrackingPyramid& to,
+                                                    const std::vector<cv::Point2f>& guess) {
+  if (from.window != cv::Size(options.window_px, options.window_px) ||
+      from.points.size() != guess.size())
+    throw std::invalid_argument("tracking: windows of another size, or not one guess per point");
+  if (guess.empty() || to.empty()) return std::vector<std::optional<cv::Point2f>>(guess.size());
+  std::vector<cv::Point2f> forward = guess;
+  std::vector<uchar> found;
+  TrackLkWindows(from, to, kStop.maxCount, kStop.epsilon, &forward, &found);
+  return Landings(options, from.from, to, from.points, forward, found);
+}
+
+std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
+                                                    const TrackingPyramid& from,
+                                                    const TrackingPyramid& to,
+                                                    const std::vector<cv::Point2f>& points,
+                                                    const std::vector<cv::Point2f>& guess) {
+  if (points.empty() || from.empty() || to.empty())
+    return std::vector<std::optional<cv::Point2f>>(points.size());
+  if (HasDerivatives(from))
+    return TrackPoints(options, MakeTrackingWindows(options, from, points), to, guess);
+  std::vector<cv::Point2f> forward = guess;
+  std::vector<uchar> found;
+  cv::calcOpticalFlowPyrLK(from, to, points, forward, found, cv::noArray(),
+                           cv::Size(options.window_px, options.window_px), options.levels, kStop,
+                           cv::OPTFLOW_USE_INITIAL_FLOW);
+  return Landings(options, from, to, points, forward, found);
 }
 
 namespace {

@@ -392,8 +392,12 @@ MotionEstimate Odometry::EstimateFromTracks(Reference* ref, const std::vector<in
     guess.push_back(predicted[k] ? cv::Point2f(static_cast<float>(predicted[k]->x()),
                                                static_cast<float>(predicted[k]->y()))
                                  : from[k]);
+  // The keyframe's windows are made at the first frame that tracks these points from it.
+  const bool windows_kept = !ref->windows.from.empty() && ref->windows.points == from &&
+                            ref->windows.from[0].data == ref->pyramid[0].data;
+  if (!windows_kept) ref->windows = MakeTrackingWindows(options_.tracking, ref->pyramid, from);
   std::vector<std::optional<cv::Point2f>> landed =
-      TrackPoints(options_.tracking, ref->pyramid, cur.pyramid, from, guess);
+      TrackPoints(options_.tracking, ref->windows, cur.pyramid, guess);
   if (options_.tracking.warp)
     RefineWarped(options_.tracking, ref->grey, cur.grey, from,
                  PredictWarps(calib_, ref_points, cur_from_ref_pred), &landed);

@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include "rgbdvo/features/lucas_kanade.hpp"
+
 namespace rgbdvo {
 
 struct TrackOptions {
@@ -55,7 +57,6 @@ cv::Mat GreyImage(const cv::Mat& image);
 // needs the derivatives of the image it tracks from, not of the one it tracks into: most
 // frames are only tracked into, so the derivatives are made where a frame is tracked from
 // (with_derivatives; without them TrackPoints would compute them again at every call).
-using TrackingPyramid = std::vector<cv::Mat>;
 TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey,
                                     bool with_derivatives);
 // True when the pyramid holds the derivatives (MakeTrackingPyramid with_derivatives).
@@ -70,10 +71,22 @@ std::vector<int> SelectSpread(const std::vector<cv::KeyPoint>& keypoints,
 // Each of `points` (pixels of `from`) tracked into `to`, starting from guess[i]: where it lies
 // in `to`, or nullopt when Lucas-Kanade lost it, it left the image, or (with
 // max_back_error_px) tracking it back from there lands farther than that from where it started.
+// Lucas-Kanade is OpenCV's (features/lucas_kanade.hpp: with the derivatives in `from`, the same
+// tracks from windows made here).
 std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
                                                     const TrackingPyramid& from,
                                                     const TrackingPyramid& to,
                                                     const std::vector<cv::Point2f>& points,
+                                                    const std::vector<cv::Point2f>& guess);
+// The Lucas-Kanade windows of `points` in `from` (a pyramid with derivatives), to track them
+// into many images: made once per keyframe, they save a quarter of Lucas-Kanade's work a frame.
+LkWindows MakeTrackingWindows(const TrackOptions& options, const TrackingPyramid& from,
+                              const std::vector<cv::Point2f>& points);
+// As TrackPoints above, from windows made by MakeTrackingWindows (one guess per point): the same
+// tracks.
+std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
+                                                    const LkWindows& from,
+                                                    const TrackingPyramid& to,
                                                     const std::vector<cv::Point2f>& guess);
 
 // Each landed point refined in `to` (CV_8UC1, the finest level) with the window of `from` seen

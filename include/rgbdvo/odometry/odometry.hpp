@@ -285,6 +285,9 @@ class Odometry {
     bool has_features = true;
     cv::Mat grey;             // the grey colour image (GreyImage)
     TrackingPyramid pyramid;  // the grey image's, to track keypoints into (and from, as a keyframe)
+    // As a keyframe: the Lucas-Kanade windows of the keypoints last tracked from it (made at the
+    // first frame that tracks them, kept for the next).
+    LkWindows windows;
     // As a keyframe: the keypoints tracked into the next frames (SelectSpread; chosen at the
     // first tracked frame), and when they go stale (made at the first tracked frame).
     std::vector<int> tracked;

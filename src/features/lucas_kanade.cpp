@@ -1,0 +1,348 @@
+#include "rgbdvo/features/lucas_kanade.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <stdexcept>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#include <opencv2/video/tracking.hpp>
+
+// The arithmetic follows OpenCV 4's lkpyramid.cpp (LKTrackerInvoker) step by step: the same
+// fixed-point bilinear weights and rounding, and the float sums in the same order (its SSE2
+// lanes included), so that the tracks are OpenCV's to the bit (tests/features). This file is
+// compiled without contracting a * b + c into fused operations (CMakeLists.txt), as OpenCV's
+// baseline build is.
+
+namespace rgbdvo {
+
+namespace {
+
+constexpr int kWBits = 14;                    // bilinear weights in 1/2^14
+constexpr float kFltScale = 1.f / (1 << 20);  // the sums' fixed point back to float
+constexpr float kMinEigThreshold = 1e-4f;     // OpenCV's default
+
+int Descale(int x, int n) { return (x + (1 << (n - 1))) >> n; }  // CV_DESCALE
+
+struct Weights {
+  int w00, w01, w10, w11;
+};
+
+Weights BilinearWeights(float a, float b) {
+  Weights w{};
+  w.w00 = cvRound((1.f - a) * (1.f - b) * (1 << kWBits));
+  w.w01 = cvRound(a * (1.f - b) * (1 << kWBits));
+  w.w10 = cvRound((1.f - a) * b * (1 << kWBits));
+  w.w11 = (1 << kWBits) - w.w00 - w.w01 - w.w10;
+  return w;
+}
+
+// The derivative pyramid's level (OpenCV: pyramid[2 level + 1]) and how many levels a pyramid
+// holds (without derivatives: one image per level).
+bool WithDerivatives(const TrackingPyramid& p) {
+  return p.size() > 1 && p.size() % 2 == 0 &&
+         p[1].type() == CV_MAKETYPE(CV_16S, 2 * p[0].channels());
+}
+int Levels(const TrackingPyramid& p) {
+  const int n = static_cast<int>(p.size()) - 1;
+  return WithDerivatives(p) ? n / 2 : n;
+}
+const cv::Mat& Image(const TrackingPyramid& p, int level) {
+  return p[static_cast<size_t>(WithDerivatives(p) ? 2 * level : level)];
+}
+
+// One point's window at one level (LKTrackerInvoker before its iterations).
+bool MakeWindow(const cv::Mat& I, const cv::Mat& dI, cv::Size win, cv::Point2f prev,
+                int16_t* values, int16_t* derivs, float* a11, float* a12, float* a22,
+                float* inv_det) {
+  const cv::Point2f half((static_cast<float>(win.width) - 1) * 0.5f,
+                         (static_cast<float>(win.height) - 1) * 0.5f);
+  prev -= half;
+  const cv::Point2i ip(cvFloor(prev.x), cvFloor(prev.y));
+  if (ip.x < -win.width || ip.x >= dI.cols || ip.y < -win.height || ip.y >= dI.rows) return false;
+  const Weights w =
+      BilinearWeights(prev.x - static_cast<float>(ip.x), prev.y - static_cast<float>(ip.y));
+  const ptrdiff_t step_i = static_cast<ptrdiff_t>(I.step[0]);
+  const ptrdiff_t step_d = static_cast<ptrdiff_t>(dI.step[0] / sizeof(int16_t));
+  // OpenCV sums x < width - width % 8 in four float lanes (pixel x to lane x % 4, eight pixels at
+  // a time: the first four, then the next four), the rest in one float; then the lanes as
+  // (l0 + l2) + (l1 + l3) onto that float.
+  const int simd_end = win.width >= 8 ? (win.width - 8) / 8 * 8 + 8 : 0;
+  float l11[4] = {0, 0, 0, 0}, l12[4] = {0, 0, 0, 0}, l22[4] = {0, 0, 0, 0};
+  float s11 = 0, s12 = 0, s22 = 0;
+#if defined(__SSE2__)
+  const __m128i qw0 = _mm_set1_epi32(
+      static_cast<int>((static_cast<uint32_t>(w.w01) << 16) | static_cast<uint16_t>(w.w00)));
+  const __m128i qw1 = _mm_set1_epi32(
+      static_cast<int>((static_cast<uint32_t>(w.w11) << 16) | static_cast<uint16_t>(w.w10)));
+  const __m128i qdelta = _mm_set1_epi32(1 << (kWBits - 5 - 1));
+  const __m128i qdelta_d = _mm_set1_epi32(1 << (kWBits - 1));
+  const __m128i zero = _mm_setzero_si128();
+  __m128 q11 = _mm_setzero_ps(), q12 = _mm_setzero_ps(), q22 = _mm_setzero_ps();
+  // Four pixels' derivatives, bilinear, stored as (x, y) pairs and added to the sums' lanes.
+  const auto four_derivs = [&](const int16_t* ds, int16_t* out) {
+    const auto load = [](const int16_t* p) {
+      return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    };
+    const __m128i v00 = load(ds), v01 = load(ds + 2);
+    const __m128i v10 = load(ds + step_d), v11 = load(ds + step_d + 2);
+    __m128i t0 =
+        _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(v00, v01), qw0), qdelta_d),
+                      _mm_madd_epi16(_mm_unpacklo_epi16(v10, v11), qw1));
+    __m128i t1 =
+        _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(v00, v01), qw0), qdelta_d),
+                      _mm_madd_epi16(_mm_unpackhi_epi16(v10, v11), qw1));
+    t0 = _mm_srai_epi32(t0, kWBits);
+    t1 = _mm_srai_epi32(t1, kWBits);
+    const __m128i pairs = _mm_packs_epi32(t0, t1);  // x0 y0 x1 y1 x2 y2 x3 y3
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), pairs);
+    const __m128 fx = _mm_cvtepi32_ps(_mm_srai_epi32(_mm_slli_epi32(pairs, 16), 16));
+    const __m128 fy = _mm_cvtepi32_ps(_mm_srai_epi32(pairs, 16));
+    q22 = _mm_add_ps(_mm_mul_ps(fy, fy), q22);
+    q12 = _mm_add_ps(_mm_mul_ps(fx, fy), q12);
+    q11 = _mm_add_ps(_mm_mul_ps(fx, fx), q11);
+  };
+#endif
+  for (int y = 0; y < win.height; ++y) {
+    const uchar* src = I.data + (y + ip.y) * step_i + ip.x;
+    const int16_t* dsrc =
+        reinterpret_cast<const int16_t*>(dI.data) + (y + ip.y) * step_d + 2 * ip.x;
+    int16_t* v = values + y * win.width;
+    int16_t* d = derivs + 2 * y * win.width;
+    int x = 0;
+#if defined(__SSE2__)
+    for (; x < simd_end; x += 8) {
+      const auto load8 = [&](const uchar* p) {
+        return _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)), zero);
+      };
+      const __m128i v00 = load8(src + x), v01 = load8(src + x + 1);
+      const __m128i v10 = load8(src + x + step_i), v11 = load8(src + x + step_i + 1);
+      __m128i t0 =
+          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(v00, v01), qw0), qdelta),
+                        _mm_madd_epi16(_mm_unpacklo_epi16(v10, v11), qw1));
+      __m128i t1 =
+          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(v00, v01), qw0), qdelta),
+                        _mm_madd_epi16(_mm_unpackhi_epi16(v10, v11), qw1));
+      t0 = _mm_srai_epi32(t0, kWBits - 5);
+      t1 = _mm_srai_epi32(t1, kWBits - 5);
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(v + x), _mm_packs_epi32(t0, t1));
+      four_derivs(dsrc + 2 * x, d + 2 * x);
+      four_derivs(dsrc + 2 * x + 8, d + 2 * x + 8);
+    }
+#endif
+    for (; x < win.width; ++x) {
+      const int16_t* ds = dsrc + 2 * x;
+      const int ival = Descale(src[x] * w.w00 + src[x + 1] * w.w01 + src[x + step_i] * w.w10 +
+                                   src[x + step_i + 1] * w.w11,
+                               kWBits - 5);
+      const int ix = Descale(
+          ds[0] * w.w00 + ds[2] * w.w01 + ds[step_d] * w.w10 + ds[step_d + 2] * w.w11, kWBits);
+      const int iy = Descale(
+          ds[1] * w.w00 + ds[3] * w.w01 + ds[step_d + 1] * w.w10 + ds[step_d + 3] * w.w11, kWBits);
+      v[x] = static_cast<int16_t>(ival);
+      d[2 * x] = static_cast<int16_t>(ix);
+      d[2 * x + 1] = static_cast<int16_t>(iy);
+      if (x < simd_end) {  // no SSE2: its lanes kept by hand
+        const float fx = static_cast<float>(ix), fy = static_cast<float>(iy);
+        const int lane = x % 4;
+        l22[lane] = fy * fy + l22[lane];
+        l12[lane] = fx * fy + l12[lane];
+        l11[lane] = fx * fx + l11[lane];
+      } else {
+        s11 += static_cast<float>(ix * ix);
+        s12 += static_cast<float>(ix * iy);
+        s22 += static_cast<float>(iy * iy);
+      }
+    }
+  }
+#if defined(__SSE2__)
+  _mm_storeu_ps(l11, q11);
+  _mm_storeu_ps(l12, q12);
+  _mm_storeu_ps(l22, q22);
+#endif
+  s11 += (l11[0] + l11[2]) + (l11[1] + l11[3]);
+  s12 += (l12[0] + l12[2]) + (l12[1] + l12[3]);
+  s22 += (l22[0] + l22[2]) + (l22[1] + l22[3]);
+  const float A11 = s11 * kFltScale, A12 = s12 * kFltScale, A22 = s22 * kFltScale;
+  const float D = A11 * A22 - A12 * A12;
+  const float min_eig = (A22 + A11 - std::sqrt((A11 - A22) * (A11 - A22) + 4.f * A12 * A12)) /
+                        static_cast<float>(2 * win.width * win.height);
+  if (min_eig < kMinEigThreshold || D < FLT_EPSILON) return false;
+  *a11 = A11;
+  *a12 = A12;
+  *a22 = A22;
+  *inv_det = 1.f / D;
+  return true;
+}
+
+// b = the window's mismatch in J at `at` (its top-left corner, inside J's border) times the
+// window's derivatives, as OpenCV sums it.
+void Mismatch(const cv::Mat& J, cv::Size win, cv::Point2i at, const Weights& w,
+              const int16_t* values, const int16_t* derivs, float* b1, float* b2) {
+  const ptrdiff_t step_j = static_cast<ptrdiff_t>(J.step[0]);
+  const int simd_end = win.width >= 8 ? (win.width - 8) / 8 * 8 + 8 : 0;
+  float ib1 = 0, ib2 = 0;
+#if defined(__SSE2__)
+  const __m128i qw0 = _mm_set1_epi32(
+      static_cast<int>((static_cast<uint32_t>(w.w01) << 16) | static_cast<uint16_t>(w.w00)));
+  const __m128i qw1 = _mm_set1_epi32(
+      static_cast<int>((static_cast<uint32_t>(w.w11) << 16) | static_cast<uint16_t>(w.w10)));
+  const __m128i qdelta = _mm_set1_epi32(1 << (kWBits - 5 - 1));
+  const __m128i zero = _mm_setzero_si128();
+  __m128 qb0 = _mm_setzero_ps(), qb1 = _mm_setzero_ps();
+#endif
+  for (int y = 0; y < win.height; ++y) {
+    const uchar* jp = J.data + (y + at.y) * step_j + at.x;
+    const int16_t* ip = values + y * win.width;
+    const int16_t* dp = derivs + 2 * y * win.width;
+    int x = 0;
+#if defined(__SSE2__)
+    for (; x < simd_end; x += 8) {
+      const auto load8 = [&](const uchar* p) {
+        return _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)), zero);
+      };
+      const __m128i v00 = load8(jp + x), v01 = load8(jp + x + 1);
+      const __m128i v10 = load8(jp + x + step_j), v11 = load8(jp + x + step_j + 1);
+      __m128i t0 =
+          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(v00, v01), qw0), qdelta),
+                        _mm_madd_epi16(_mm_unpacklo_epi16(v10, v11), qw1));
+      __m128i t1 =
+          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(v00, v01), qw0), qdelta),
+                        _mm_madd_epi16(_mm_unpackhi_epi16(v10, v11), qw1));
+      t0 = _mm_srai_epi32(t0, kWBits - 5);
+      t1 = _mm_srai_epi32(t1, kWBits - 5);
+      const __m128i diff0 = _mm_subs_epi16(
+          _mm_packs_epi32(t0, t1), _mm_loadu_si128(reinterpret_cast<const __m128i*>(ip + x)));
+      const __m128i diff2 = _mm_unpacklo_epi16(diff0, diff0);
+      const __m128i diff1 = _mm_unpackhi_epi16(diff0, diff0);
+      const __m128i d0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dp + 2 * x));
+      const __m128i d1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dp + 2 * x + 8));
+      const __m128i g0 = _mm_unpacklo_epi16(d0, d1), g1 = _mm_unpackhi_epi16(d0, d1);
+      const __m128i e0 = _mm_unpacklo_epi16(diff2, diff1), e1 = _mm_unpackhi_epi16(diff2, diff1);
+      qb0 = _mm_add_ps(qb0, _mm_cvtepi32_ps(_mm_madd_epi16(e0, g0)));
+      qb1 = _mm_add_ps(qb1, _mm_cvtepi32_ps(_mm_madd_epi16(e1, g1)));
+    }
+#endif
+    for (; x < win.width; ++x) {
+      const int diff = Descale(jp[x] * w.w00 + jp[x + 1] * w.w01 + jp[x + step_j] * w.w10 +
+                                   jp[x + step_j + 1] * w.w11,
+                               kWBits - 5) -
+                       ip[x];
+      ib1 += static_cast<float>(diff * dp[2 * x]);
+      ib2 += static_cast<float>(diff * dp[2 * x + 1]);
+    }
+  }
+#if defined(__SSE2__)
+  // Lanes 0 and 2 hold the x sums, 1 and 3 the y sums.
+  float q[4];
+  _mm_storeu_ps(q, _mm_add_ps(qb0, qb1));
+  ib1 += q[0] + q[2];
+  ib2 += q[1] + q[3];
+#endif
+  *b1 = ib1 * kFltScale;
+  *b2 = ib2 * kFltScale;
+}
+
+}  // namespace
+
+LkWindows MakeLkWindows(const TrackingPyramid& from, cv::Size window, int levels,
+                        const std::vector<cv::Point2f>& points) {
+  if (from.empty() || !WithDerivatives(from) || from[0].type() != CV_8UC1)
+    throw std::invalid_argument(
+        "Lucas-Kanade: windows are made from a CV_8UC1 pyramid with derivatives");
+  if (window.width < 3 || window.height < 3)
+    throw std::invalid_argument("Lucas-Kanade: window below 3 px");
+  LkWindows w;
+  w.window = window;
+  w.levels = std::min(std::max(levels, 0), Levels(from));
+  w.from = from;
+  w.points = points;
+  const size_t n = points.size(), slots = n * static_cast<size_t>(w.levels + 1);
+  const size_t area = static_cast<size_t>(window.area());
+  w.usable.assign(slots, 0);
+  w.a11.assign(slots, 0);
+  w.a12.assign(slots, 0);
+  w.a22.assign(slots, 0);
+  w.inv_det.assign(slots, 0);
+  w.values.assign(slots * area, 0);
+  w.derivs.assign(2 * slots * area, 0);
+  for (int level = 0; level <= w.levels; ++level) {
+    const cv::Mat& I = from[2 * static_cast<size_t>(level)];
+    const cv::Mat& dI = from[2 * static_cast<size_t>(level) + 1];
+    const float scale = static_cast<float>(1. / (1 << level));
+    for (size_t i = 0; i < n; ++i) {
+      const size_t s = static_cast<size_t>(level) * n + i;
+      w.usable[s] =
+          MakeWindow(I, dI, window, points[i] * scale, &w.values[s * area], &w.derivs[2 * s * area],
+                     &w.a11[s], &w.a12[s], &w.a22[s], &w.inv_det[s])
+              ? 1
+              : 0;
+    }
+  }
+  return w;
+}
+
+void TrackLkWindows(const LkWindows& w, const TrackingPyramid& to, int max_iterations,
+                    double epsilon, std::vector<cv::Point2f>* next, std::vector<uchar>* found) {
+  const size_t n = w.points.size();
+  if (next->size() != n) throw std::invalid_argument("Lucas-Kanade: one start per point");
+  found->assign(n, 1);
+  if (n == 0) return;
+  const int max_level = std::min(w.levels, Levels(to));
+  max_iterations = std::min(std::max(max_iterations, 0), 100);
+  epsilon = std::min(std::max(epsilon, 0.), 10.);
+  epsilon *= epsilon;
+#if !defined(__SSE2__)
+  cv::calcOpticalFlowPyrLK(w.from, to, w.points, *next, *found, cv::noArray(), w.window, max_level,
+                           cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS,
+                                            max_iterations, std::sqrt(epsilon)),
+                           cv::OPTFLOW_USE_INITIAL_FLOW);
+  return;
+#endif
+  const cv::Size win = w.window;
+  const cv::Point2f half((static_cast<float>(win.width) - 1) * 0.5f,
+                         (static_cast<float>(win.height) - 1) * 0.5f);
+  const size_t area = static_cast<size_t>(win.area());
+  for (size_t i = 0; i < n; ++i) {
+    cv::Point2f& out = (*next)[i];
+    for (int level = max_level; level >= 0; --level) {
+      const cv::Mat& J = Image(to, level);
+      cv::Point2f at = level == max_level ? out * static_cast<float>(1. / (1 << level)) : out * 2.f;
+      out = at;
+      const size_t s = static_cast<size_t>(level) * n + i;
+      if (!w.usable[s]) {
+        if (level == 0) (*found)[i] = 0;
+        continue;
+      }
+      const float A11 = w.a11[s], A12 = w.a12[s], A22 = w.a22[s], D = w.inv_det[s];
+      const int16_t* values = &w.values[s * area];
+      const int16_t* derivs = &w.derivs[2 * s * area];
+      at -= half;
+      cv::Point2f prev_delta;
+      for (int j = 0; j < max_iterations; ++j) {
+        const cv::Point2i ia(cvFloor(at.x), cvFloor(at.y));
+        if (ia.x < -win.width || ia.x >= J.cols || ia.y < -win.height || ia.y >= J.rows) {
+          if (level == 0) (*found)[i] = 0;
+          break;
+        }
+        const Weights wt =
+            BilinearWeights(at.x - static_cast<float>(ia.x), at.y - static_cast<float>(ia.y));
+        float b1 = 0, b2 = 0;
+        Mismatch(J, win, ia, wt, values, derivs, &b1, &b2);
+        const cv::Point2f delta((A12 * b2 - A22 * b1) * D, (A12 * b1 - A11 * b2) * D);
+        at += delta;
+        out = at + half;
+        if (delta.ddot(delta) <= epsilon) break;
+        if (j > 0 && std::abs(delta.x + prev_delta.x) < 0.01 &&
+            std::abs(delta.y + prev_delta.y) < 0.01) {
+          out -= delta * 0.5f;
+          break;
+        }
+        prev_delta = delta;
+      }
+    }
+  }
+}
+
+}  // namespace rgbdvo
