@@ -38,6 +38,44 @@ Weights BilinearWeights(float a, float b) {
   return w;
 }
 
+#if defined(__SSE2__)
+// The weights as _mm_madd_epi16 operands: (w00, w01) and (w10, w11) in each pair of lanes.
+struct PairedWeights {
+  __m128i top, bottom;
+};
+PairedWeights Pair(const Weights& w) {
+  const auto pair = [](int lo, int hi) {
+    return _mm_set1_epi32(
+        static_cast<int>((static_cast<uint32_t>(hi) << 16) | static_cast<uint16_t>(lo)));
+  };
+  return {pair(w.w00, w.w01), pair(w.w10, w.w11)};
+}
+
+// Eight int16 lanes sampled between four neighbours (v00 at the sample, v01 right of it, v10
+// below, v11 below right) in OpenCV's fixed point: weighted, rounded, shifted right by `shift`,
+// packed back to int16.
+__m128i Bilinear(__m128i v00, __m128i v01, __m128i v10, __m128i v11, const PairedWeights& w,
+                 int shift) {
+  const __m128i round = _mm_set1_epi32(1 << (shift - 1));
+  __m128i t0 =
+      _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(v00, v01), w.top), round),
+                    _mm_madd_epi16(_mm_unpacklo_epi16(v10, v11), w.bottom));
+  __m128i t1 =
+      _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(v00, v01), w.top), round),
+                    _mm_madd_epi16(_mm_unpackhi_epi16(v10, v11), w.bottom));
+  return _mm_packs_epi32(_mm_srai_epi32(t0, shift), _mm_srai_epi32(t1, shift));
+}
+
+// Eight pixels of an 8-bit image from p, x 32 (kWBits - 5 fraction bits kept), as int16.
+__m128i BilinearPixels(const uchar* p, ptrdiff_t step, const PairedWeights& w) {
+  const auto load8 = [](const uchar* q) {
+    return _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q)),
+                             _mm_setzero_si128());
+  };
+  return Bilinear(load8(p), load8(p + 1), load8(p + step), load8(p + step + 1), w, kWBits - 5);
+}
+#endif
+
 // The derivative pyramid's level (OpenCV: pyramid[2 level + 1]) and how many levels a pyramid
 // holds (without derivatives: one image per level).
 bool WithDerivatives(const TrackingPyramid& p) {
@@ -68,34 +106,20 @@ bool MakeWindow(const cv::Mat& I, const cv::Mat& dI, cv::Size win, cv::Point2f p
   // OpenCV sums x < width - width % 8 in four float lanes (pixel x to lane x % 4, eight pixels at
   // a time: the first four, then the next four), the rest in one float; then the lanes as
   // (l0 + l2) + (l1 + l3) onto that float.
-  const int simd_end = win.width >= 8 ? (win.width - 8) / 8 * 8 + 8 : 0;
+  // OpenCV's vector loop takes eight pixels while eight are left.
+  const int simd_end = win.width / 8 * 8;
   float l11[4] = {0, 0, 0, 0}, l12[4] = {0, 0, 0, 0}, l22[4] = {0, 0, 0, 0};
   float s11 = 0, s12 = 0, s22 = 0;
 #if defined(__SSE2__)
-  const __m128i qw0 = _mm_set1_epi32(
-      static_cast<int>((static_cast<uint32_t>(w.w01) << 16) | static_cast<uint16_t>(w.w00)));
-  const __m128i qw1 = _mm_set1_epi32(
-      static_cast<int>((static_cast<uint32_t>(w.w11) << 16) | static_cast<uint16_t>(w.w10)));
-  const __m128i qdelta = _mm_set1_epi32(1 << (kWBits - 5 - 1));
-  const __m128i qdelta_d = _mm_set1_epi32(1 << (kWBits - 1));
-  const __m128i zero = _mm_setzero_si128();
+  const PairedWeights pw = Pair(w);
   __m128 q11 = _mm_setzero_ps(), q12 = _mm_setzero_ps(), q22 = _mm_setzero_ps();
   // Four pixels' derivatives, bilinear, stored as (x, y) pairs and added to the sums' lanes.
   const auto four_derivs = [&](const int16_t* ds, int16_t* out) {
     const auto load = [](const int16_t* p) {
       return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
     };
-    const __m128i v00 = load(ds), v01 = load(ds + 2);
-    const __m128i v10 = load(ds + step_d), v11 = load(ds + step_d + 2);
-    __m128i t0 =
-        _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(v00, v01), qw0), qdelta_d),
-                      _mm_madd_epi16(_mm_unpacklo_epi16(v10, v11), qw1));
-    __m128i t1 =
-        _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(v00, v01), qw0), qdelta_d),
-                      _mm_madd_epi16(_mm_unpackhi_epi16(v10, v11), qw1));
-    t0 = _mm_srai_epi32(t0, kWBits);
-    t1 = _mm_srai_epi32(t1, kWBits);
-    const __m128i pairs = _mm_packs_epi32(t0, t1);  // x0 y0 x1 y1 x2 y2 x3 y3
+    const __m128i pairs =  // x0 y0 x1 y1 x2 y2 x3 y3
+        Bilinear(load(ds), load(ds + 2), load(ds + step_d), load(ds + step_d + 2), pw, kWBits);
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out), pairs);
     const __m128 fx = _mm_cvtepi32_ps(_mm_srai_epi32(_mm_slli_epi32(pairs, 16), 16));
     const __m128 fy = _mm_cvtepi32_ps(_mm_srai_epi32(pairs, 16));
@@ -113,20 +137,7 @@ bool MakeWindow(const cv::Mat& I, const cv::Mat& dI, cv::Size win, cv::Point2f p
     int x = 0;
 #if defined(__SSE2__)
     for (; x < simd_end; x += 8) {
-      const auto load8 = [&](const uchar* p) {
-        return _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)), zero);
-      };
-      const __m128i v00 = load8(src + x), v01 = load8(src + x + 1);
-      const __m128i v10 = load8(src + x + step_i), v11 = load8(src + x + step_i + 1);
-      __m128i t0 =
-          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(v00, v01), qw0), qdelta),
-                        _mm_madd_epi16(_mm_unpacklo_epi16(v10, v11), qw1));
-      __m128i t1 =
-          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(v00, v01), qw0), qdelta),
-                        _mm_madd_epi16(_mm_unpackhi_epi16(v10, v11), qw1));
-      t0 = _mm_srai_epi32(t0, kWBits - 5);
-      t1 = _mm_srai_epi32(t1, kWBits - 5);
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(v + x), _mm_packs_epi32(t0, t1));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(v + x), BilinearPixels(src + x, step_i, pw));
       four_derivs(dsrc + 2 * x, d + 2 * x);
       four_derivs(dsrc + 2 * x + 8, d + 2 * x + 8);
     }
@@ -181,15 +192,11 @@ bool MakeWindow(const cv::Mat& I, const cv::Mat& dI, cv::Size win, cv::Point2f p
 void Mismatch(const cv::Mat& J, cv::Size win, cv::Point2i at, const Weights& w,
               const int16_t* values, const int16_t* derivs, float* b1, float* b2) {
   const ptrdiff_t step_j = static_cast<ptrdiff_t>(J.step[0]);
-  const int simd_end = win.width >= 8 ? (win.width - 8) / 8 * 8 + 8 : 0;
+  // OpenCV's vector loop takes eight pixels while eight are left.
+  const int simd_end = win.width / 8 * 8;
   float ib1 = 0, ib2 = 0;
 #if defined(__SSE2__)
-  const __m128i qw0 = _mm_set1_epi32(
-      static_cast<int>((static_cast<uint32_t>(w.w01) << 16) | static_cast<uint16_t>(w.w00)));
-  const __m128i qw1 = _mm_set1_epi32(
-      static_cast<int>((static_cast<uint32_t>(w.w11) << 16) | static_cast<uint16_t>(w.w10)));
-  const __m128i qdelta = _mm_set1_epi32(1 << (kWBits - 5 - 1));
-  const __m128i zero = _mm_setzero_si128();
+  const PairedWeights pw = Pair(w);
   __m128 qb0 = _mm_setzero_ps(), qb1 = _mm_setzero_ps();
 #endif
   for (int y = 0; y < win.height; ++y) {
@@ -199,21 +206,9 @@ void Mismatch(const cv::Mat& J, cv::Size win, cv::Point2i at, const Weights& w,
     int x = 0;
 #if defined(__SSE2__)
     for (; x < simd_end; x += 8) {
-      const auto load8 = [&](const uchar* p) {
-        return _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)), zero);
-      };
-      const __m128i v00 = load8(jp + x), v01 = load8(jp + x + 1);
-      const __m128i v10 = load8(jp + x + step_j), v11 = load8(jp + x + step_j + 1);
-      __m128i t0 =
-          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(v00, v01), qw0), qdelta),
-                        _mm_madd_epi16(_mm_unpacklo_epi16(v10, v11), qw1));
-      __m128i t1 =
-          _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(v00, v01), qw0), qdelta),
-                        _mm_madd_epi16(_mm_unpackhi_epi16(v10, v11), qw1));
-      t0 = _mm_srai_epi32(t0, kWBits - 5);
-      t1 = _mm_srai_epi32(t1, kWBits - 5);
-      const __m128i diff0 = _mm_subs_epi16(
-          _mm_packs_epi32(t0, t1), _mm_loadu_si128(reinterpret_cast<const __m128i*>(ip + x)));
+      const __m128i diff0 =
+          _mm_subs_epi16(BilinearPixels(jp + x, step_j, pw),
+                         _mm_loadu_si128(reinterpret_cast<const __m128i*>(ip + x)));
       const __m128i diff2 = _mm_unpacklo_epi16(diff0, diff0);
       const __m128i diff1 = _mm_unpackhi_epi16(diff0, diff0);
       const __m128i d0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dp + 2 * x));
