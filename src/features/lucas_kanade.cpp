@@ -4,7 +4,9 @@
 #include <cfloat>
 #include <cmath>
 #include <stdexcept>
-#if defined(__SSE2__)
+#if defined(__x86_64__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 #include <opencv2/video/tracking.hpp>
@@ -187,6 +189,144 @@ bool MakeWindow(const cv::Mat& I, const cv::Mat& dI, cv::Size win, cv::Point2f p
   return true;
 }
 
+// One window row's pixels x0 .. width - 1 as OpenCV's scalar loop adds them (ib: x, y sums).
+// A pixel or a few a row: always inlined, a call would cost as much.
+[[gnu::always_inline]] inline void MismatchTail(const uchar* jp, ptrdiff_t step_j,
+                                                const int16_t* ip, const int16_t* dp, int x0,
+                                                int width, const Weights& w, float* ib1,
+                                                float* ib2) {
+  for (int x = x0; x < width; ++x) {
+    const int diff = Descale(jp[x] * w.w00 + jp[x + 1] * w.w01 + jp[x + step_j] * w.w10 +
+                                 jp[x + step_j + 1] * w.w11,
+                             kWBits - 5) -
+                     ip[x];
+    *ib1 += static_cast<float>(diff * dp[2 * x]);
+    *ib2 += static_cast<float>(diff * dp[2 * x + 1]);
+  }
+}
+
+#if defined(__SSE2__)
+// Eight pixels' mismatch times the derivatives, as OpenCV's vector loop pairs them: the integer
+// sums of pixels (0, 4), (1, 5) in p0 and (2, 6), (3, 7) in p1, each as (x, y) lanes, to float.
+// diff: the eight sampled pixels less the window's; d0, d1: their eight (x, y) derivative pairs.
+void PairProducts(__m128i diff, __m128i d0, __m128i d1, __m128* p0, __m128* p1) {
+  const __m128i diff2 = _mm_unpacklo_epi16(diff, diff), diff1 = _mm_unpackhi_epi16(diff, diff);
+  const __m128i g0 = _mm_unpacklo_epi16(d0, d1), g1 = _mm_unpackhi_epi16(d0, d1);
+  const __m128i e0 = _mm_unpacklo_epi16(diff2, diff1), e1 = _mm_unpackhi_epi16(diff2, diff1);
+  *p0 = _mm_cvtepi32_ps(_mm_madd_epi16(e0, g0));
+  *p1 = _mm_cvtepi32_ps(_mm_madd_epi16(e1, g1));
+}
+#endif
+
+#if defined(__SSE2__)
+// OpenCV's float sums of a window's mismatch: lanes (x, y, x, y) filled row by row by its vector
+// loop, and one float each for the pixels past it.
+struct MismatchSums {
+  __m128 q0 = _mm_setzero_ps(), q1 = _mm_setzero_ps();
+  float b1 = 0, b2 = 0;
+};
+
+// One window row: its eight-pixel blocks (x < simd_end) as OpenCV's vector loop adds them, then
+// the rest. jp: the row of J under the window; ip, dp: the window's values and derivatives.
+void MismatchRow(const uchar* jp, ptrdiff_t step_j, const int16_t* ip, const int16_t* dp,
+                 int simd_end, int width, const Weights& w, const PairedWeights& pw,
+                 MismatchSums* s) {
+  const auto load = [](const int16_t* p) {
+    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  };
+  for (int x = 0; x < simd_end; x += 8) {
+    __m128 p0, p1;
+    PairProducts(_mm_subs_epi16(BilinearPixels(jp + x, step_j, pw), load(ip + x)), load(dp + 2 * x),
+                 load(dp + 2 * x + 8), &p0, &p1);
+    s->q0 = _mm_add_ps(s->q0, p0);
+    s->q1 = _mm_add_ps(s->q1, p1);
+  }
+  MismatchTail(jp, step_j, ip, dp, simd_end, width, w, &s->b1, &s->b2);
+}
+
+// The lanes onto the floats: lanes 0 and 2 hold the x sums, 1 and 3 the y sums.
+void FinishSums(const MismatchSums& s, float* b1, float* b2) {
+  float q[4];
+  _mm_storeu_ps(q, _mm_add_ps(s.q0, s.q1));
+  *b1 = (s.b1 + (q[0] + q[2])) * kFltScale;
+  *b2 = (s.b2 + (q[1] + q[3])) * kFltScale;
+}
+#endif
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define RGBDVO_LK_AVX2 1
+bool HasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2") != 0;
+  return has;
+}
+
+// 8 pixels of row a, then 8 of row b, as 16 int16 lanes.
+__attribute__((target("avx2"))) __m256i TwoRows(const uchar* a, const uchar* b) {
+  return _mm256_cvtepu8_epi16(
+      _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(a)),
+                         _mm_loadl_epi64(reinterpret_cast<const __m128i*>(b))));
+}
+// 8 int16 of a, then 8 of b.
+__attribute__((target("avx2"))) __m256i TwoRows(const int16_t* a, const int16_t* b) {
+  return _mm256_inserti128_si256(
+      _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(a))),
+      _mm_loadu_si128(reinterpret_cast<const __m128i*>(b)), 1);
+}
+
+// Mismatch for windows of one eight-pixel block a row (9 to 15 px wide), two rows at a time: the
+// integer work of both rows in one 256-bit pass, their float products still added row by row, so
+// the sums are the same.
+__attribute__((target("avx2"))) void MismatchTwoRows(const cv::Mat& J, cv::Size win, cv::Point2i at,
+                                                     const Weights& w, const int16_t* values,
+                                                     const int16_t* derivs, float* b1, float* b2) {
+  const ptrdiff_t step_j = static_cast<ptrdiff_t>(J.step[0]);
+  const PairedWeights pw = Pair(w);
+  const __m256i top = _mm256_broadcastsi128_si256(pw.top);
+  const __m256i bottom = _mm256_broadcastsi128_si256(pw.bottom);
+  const __m256i round = _mm256_set1_epi32(1 << (kWBits - 5 - 1));
+  MismatchSums s;
+  int y = 0;
+  for (; y + 1 < win.height; y += 2) {
+    const uchar* r0 = J.data + (y + at.y) * step_j + at.x;
+    const uchar* r1 = r0 + step_j;
+    const uchar* r2 = r1 + step_j;
+    const __m256i v00 = TwoRows(r0, r1), v01 = TwoRows(r0 + 1, r1 + 1);
+    const __m256i v10 = TwoRows(r1, r2), v11 = TwoRows(r1 + 1, r2 + 1);
+    __m256i t0 = _mm256_add_epi32(
+        _mm256_add_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(v00, v01), top), round),
+        _mm256_madd_epi16(_mm256_unpacklo_epi16(v10, v11), bottom));
+    __m256i t1 = _mm256_add_epi32(
+        _mm256_add_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(v00, v01), top), round),
+        _mm256_madd_epi16(_mm256_unpackhi_epi16(v10, v11), bottom));
+    const __m256i sampled =
+        _mm256_packs_epi32(_mm256_srai_epi32(t0, kWBits - 5), _mm256_srai_epi32(t1, kWBits - 5));
+    const int16_t* ip0 = values + y * win.width;
+    const int16_t* ip1 = ip0 + win.width;
+    const int16_t* dp0 = derivs + 2 * y * win.width;
+    const int16_t* dp1 = dp0 + 2 * win.width;
+    const __m256i diff = _mm256_subs_epi16(sampled, TwoRows(ip0, ip1));
+    const __m256i d0 = TwoRows(dp0, dp1), d1 = TwoRows(dp0 + 8, dp1 + 8);
+    const __m256i diff2 = _mm256_unpacklo_epi16(diff, diff);
+    const __m256i diff1 = _mm256_unpackhi_epi16(diff, diff);
+    const __m256i g0 = _mm256_unpacklo_epi16(d0, d1), g1 = _mm256_unpackhi_epi16(d0, d1);
+    const __m256i e0 = _mm256_unpacklo_epi16(diff2, diff1);
+    const __m256i e1 = _mm256_unpackhi_epi16(diff2, diff1);
+    const __m256 p0 = _mm256_cvtepi32_ps(_mm256_madd_epi16(e0, g0));
+    const __m256 p1 = _mm256_cvtepi32_ps(_mm256_madd_epi16(e1, g1));
+    s.q0 = _mm_add_ps(s.q0, _mm256_castps256_ps128(p0));
+    s.q1 = _mm_add_ps(s.q1, _mm256_castps256_ps128(p1));
+    MismatchTail(r0, step_j, ip0, dp0, 8, win.width, w, &s.b1, &s.b2);
+    s.q0 = _mm_add_ps(s.q0, _mm256_extractf128_ps(p0, 1));
+    s.q1 = _mm_add_ps(s.q1, _mm256_extractf128_ps(p1, 1));
+    MismatchTail(r1, step_j, ip1, dp1, 8, win.width, w, &s.b1, &s.b2);
+  }
+  for (; y < win.height; ++y)
+    MismatchRow(J.data + (y + at.y) * step_j + at.x, step_j, values + y * win.width,
+                derivs + 2 * y * win.width, 8, win.width, w, pw, &s);
+  FinishSums(s, b1, b2);
+}
+#endif
+
 // b = the window's mismatch in J at `at` (its top-left corner, inside J's border) times the
 // window's derivatives, as OpenCV sums it.
 void Mismatch(const cv::Mat& J, cv::Size win, cv::Point2i at, const Weights& w,
@@ -194,49 +334,27 @@ void Mismatch(const cv::Mat& J, cv::Size win, cv::Point2i at, const Weights& w,
   const ptrdiff_t step_j = static_cast<ptrdiff_t>(J.step[0]);
   // OpenCV's vector loop takes eight pixels while eight are left.
   const int simd_end = win.width / 8 * 8;
-  float ib1 = 0, ib2 = 0;
+#if defined(RGBDVO_LK_AVX2)
+  if (simd_end == 8 && HasAvx2()) {
+    MismatchTwoRows(J, win, at, w, values, derivs, b1, b2);
+    return;
+  }
+#endif
 #if defined(__SSE2__)
   const PairedWeights pw = Pair(w);
-  __m128 qb0 = _mm_setzero_ps(), qb1 = _mm_setzero_ps();
-#endif
-  for (int y = 0; y < win.height; ++y) {
-    const uchar* jp = J.data + (y + at.y) * step_j + at.x;
-    const int16_t* ip = values + y * win.width;
-    const int16_t* dp = derivs + 2 * y * win.width;
-    int x = 0;
-#if defined(__SSE2__)
-    for (; x < simd_end; x += 8) {
-      const __m128i diff0 =
-          _mm_subs_epi16(BilinearPixels(jp + x, step_j, pw),
-                         _mm_loadu_si128(reinterpret_cast<const __m128i*>(ip + x)));
-      const __m128i diff2 = _mm_unpacklo_epi16(diff0, diff0);
-      const __m128i diff1 = _mm_unpackhi_epi16(diff0, diff0);
-      const __m128i d0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dp + 2 * x));
-      const __m128i d1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dp + 2 * x + 8));
-      const __m128i g0 = _mm_unpacklo_epi16(d0, d1), g1 = _mm_unpackhi_epi16(d0, d1);
-      const __m128i e0 = _mm_unpacklo_epi16(diff2, diff1), e1 = _mm_unpackhi_epi16(diff2, diff1);
-      qb0 = _mm_add_ps(qb0, _mm_cvtepi32_ps(_mm_madd_epi16(e0, g0)));
-      qb1 = _mm_add_ps(qb1, _mm_cvtepi32_ps(_mm_madd_epi16(e1, g1)));
-    }
-#endif
-    for (; x < win.width; ++x) {
-      const int diff = Descale(jp[x] * w.w00 + jp[x + 1] * w.w01 + jp[x + step_j] * w.w10 +
-                                   jp[x + step_j + 1] * w.w11,
-                               kWBits - 5) -
-                       ip[x];
-      ib1 += static_cast<float>(diff * dp[2 * x]);
-      ib2 += static_cast<float>(diff * dp[2 * x + 1]);
-    }
-  }
-#if defined(__SSE2__)
-  // Lanes 0 and 2 hold the x sums, 1 and 3 the y sums.
-  float q[4];
-  _mm_storeu_ps(q, _mm_add_ps(qb0, qb1));
-  ib1 += q[0] + q[2];
-  ib2 += q[1] + q[3];
-#endif
+  MismatchSums s;
+  for (int y = 0; y < win.height; ++y)
+    MismatchRow(J.data + (y + at.y) * step_j + at.x, step_j, values + y * win.width,
+                derivs + 2 * y * win.width, simd_end, win.width, w, pw, &s);
+  FinishSums(s, b1, b2);
+#else
+  float ib1 = 0, ib2 = 0;
+  for (int y = 0; y < win.height; ++y)
+    MismatchTail(J.data + (y + at.y) * step_j + at.x, step_j, values + y * win.width,
+                 derivs + 2 * y * win.width, 0, win.width, w, &ib1, &ib2);
   *b1 = ib1 * kFltScale;
   *b2 = ib2 * kFltScale;
+#endif
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ TEST_CASE("Lucas-Kanade from windows made once tracks as OpenCV's, bit for bit")
     starts.push_back(p + cv::Point2f(3.5f, -2.25f));
   }
   const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+  // 9 and 13 px: one eight-pixel block a row, two rows at a time where the CPU has AVX2.
   for (const int side : {5, 9, 13, 21}) {
     for (const int levels : {0, 3}) {
       INFO("window " << side << ", levels " << levels);
