@@ -46,11 +46,6 @@ TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& 
   return pyramid;
 }
 
-bool HasDerivatives(const TrackingPyramid& pyramid) {
-  // With derivatives every level is followed by its 2-channel 16-bit Scharr gradients.
-  return pyramid.size() > 1 && pyramid[1].type() == CV_16SC2;
-}
-
 std::vector<int> SelectSpread(const std::vector<cv::KeyPoint>& keypoints,
                               const std::vector<bool>& usable, cv::Size size, int max_points) {
   constexpr int kCells = 8;

@@ -80,16 +80,12 @@ __m128i BilinearPixels(const uchar* p, ptrdiff_t step, const PairedWeights& w) {
 
 // The derivative pyramid's level (OpenCV: pyramid[2 level + 1]) and how many levels a pyramid
 // holds (without derivatives: one image per level).
-bool WithDerivatives(const TrackingPyramid& p) {
-  return p.size() > 1 && p.size() % 2 == 0 &&
-         p[1].type() == CV_MAKETYPE(CV_16S, 2 * p[0].channels());
-}
 int Levels(const TrackingPyramid& p) {
   const int n = static_cast<int>(p.size()) - 1;
-  return WithDerivatives(p) ? n / 2 : n;
+  return HasDerivatives(p) ? n / 2 : n;
 }
 const cv::Mat& Image(const TrackingPyramid& p, int level) {
-  return p[static_cast<size_t>(WithDerivatives(p) ? 2 * level : level)];
+  return p[static_cast<size_t>(HasDerivatives(p) ? 2 * level : level)];
 }
 
 // One point's window at one level (LKTrackerInvoker before its iterations).
@@ -359,9 +355,14 @@ void Mismatch(const cv::Mat& J, cv::Size win, cv::Point2i at, const Weights& w,
 
 }  // namespace
 
+bool HasDerivatives(const TrackingPyramid& p) {
+  return p.size() > 1 && p.size() % 2 == 0 &&
+         p[1].type() == CV_MAKETYPE(CV_16S, 2 * p[0].channels());
+}
+
 LkWindows MakeLkWindows(const TrackingPyramid& from, cv::Size window, int levels,
                         const std::vector<cv::Point2f>& points) {
-  if (from.empty() || !WithDerivatives(from) || from[0].type() != CV_8UC1)
+  if (from.empty() || !HasDerivatives(from) || from[0].type() != CV_8UC1)
     throw std::invalid_argument(
         "Lucas-Kanade: windows are made from a CV_8UC1 pyramid with derivatives");
   if (window.width < 3 || window.height < 3)

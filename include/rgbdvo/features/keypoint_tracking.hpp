@@ -59,8 +59,7 @@ cv::Mat GreyImage(const cv::Mat& image);
 // (with_derivatives; without them TrackPoints would compute them again at every call).
 TrackingPyramid MakeTrackingPyramid(const TrackOptions& options, const cv::Mat& grey,
                                     bool with_derivatives);
-// True when the pyramid holds the derivatives (MakeTrackingPyramid with_derivatives).
-bool HasDerivatives(const TrackingPyramid& pyramid);
+// HasDerivatives (features/lucas_kanade.hpp) tells a pyramid made with_derivatives.
 
 // Up to max_points indices of the keypoints with usable[i], spread over the image (size):
 // the image split into an 8 x 8 grid, the strongest remaining keypoint of each cell taken in

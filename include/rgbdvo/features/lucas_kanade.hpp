@@ -14,6 +14,8 @@ namespace rgbdvo {
 // The grey image's pyramid, as cv::buildOpticalFlowPyramid makes it (with or without the
 // derivatives after each level).
 using TrackingPyramid = std::vector<cv::Mat>;
+// True when every level is followed by its 2-channel 16-bit Scharr derivatives (OpenCV's test).
+bool HasDerivatives(const TrackingPyramid& pyramid);
 
 struct LkWindows {
   cv::Size window;
