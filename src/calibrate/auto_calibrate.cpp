@@ -362,24 +362,21 @@ Eigen::Vector2d IrToColorPixel(const AutoCalibParams& p, const Eigen::Vector2d& 
   return {u, v};
 }
 
-AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<Frame>& frames,
-                              const Calibration& start) {
-  o.Check();
-  start.Check();
-  if (frames.empty()) throw std::invalid_argument("AutoCalibrate: no frames");
-  for (const Frame& f : frames)
-    if (f.bgr.type() != CV_8UC3 || f.depth_m.type() != CV_32FC1 || f.bgr.empty() ||
-        f.depth_m.empty())
-      throw std::invalid_argument("AutoCalibrate: frame " + std::to_string(f.index) + " (" +
-                                  f.name + "): need CV_8UC3 colour and CV_32FC1 depth");
-  AutoCalibration result;
-  result.frames_given = static_cast<int>(frames.size());
+namespace {
+
+// Pools the frames' depth edges (subsampled evenly) and their colour distance images into
+// *problem; *used_frames: the index into frames of each distance image. False with
+// out->reason when the frames hold too few edges.
+bool PoolEdges(const AutoCalibrateOptions& o, const std::vector<Frame>& frames,
+               const Calibration& start, Problem* problem, std::vector<int>* used_frames,
+               AutoCalibration* out) {
   const std::string range = " (" + Fixed(start.min_depth_m, 2) + "-" + Fixed(start.max_depth_m, 2) +
                             " m, the calibration's range)";
 
-  Problem pr;
+  Problem& pr = *problem;
+  std::vector<int>& used = *used_frames;
+  AutoCalibration& result = *out;
   pr.ir_size = frames.front().depth_m.size();
-  std::vector<int> used;  // index into frames per distance image
   int64_t readings = 0, all_edges = 0;
   for (size_t k = 0; k < frames.size(); ++k) {
     int n = 0;
@@ -395,20 +392,20 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
   if (readings == 0) {
     result.reason = "no depth readings in " + std::to_string(frames.size()) +
                     " frames: all depths are zero or out of range" + range;
-    return result;
+    return false;
   }
   if (all_edges == 0) {
     result.reason = "no depth edges (neighbours more than " + Fixed(100 * o.depth_jump_ratio, 0) +
                     " % apart) in " + std::to_string(frames.size()) +
                     " frames: a flat scene? Record objects in front of a background";
-    return result;
+    return false;
   }
   if (result.frames_used < o.min_frames) {
     result.reason = "only " + std::to_string(result.frames_used) + " of " +
                     std::to_string(frames.size()) +
                     " frames have >= " + std::to_string(o.min_edge_points_per_frame) +
                     " depth-edge points, need " + std::to_string(o.min_frames);
-    return result;
+    return false;
   }
   // Subsample the pooled points evenly (they are in frame order, so every frame keeps its share).
   {
@@ -426,6 +423,76 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
   }
   pr.disparity = Eigen::Vector2d(start.s_u, start.s_v);
   for (int k : used) pr.distance.push_back(ColorDistance(o, frames[k].bgr, o.coarse_truncation_px));
+
+  return true;
+}
+
+// The fit's uncertainty: the spread of fits on disjoint blocks of consecutive used frames
+// (sigma_A-D, corner_sigma_px in *out). False with out->reason when they disagree too much.
+bool MeasureUncertainty(const AutoCalibrateOptions& o, const Problem& pr, int frames_used,
+                        const AutoCalibParams& p, AutoCalibration* out) {
+  AutoCalibration& result = *out;
+  // Uncertainty: the spread of fits on disjoint blocks of consecutive used frames.
+  const int k = std::min(o.uncertainty_subsets, frames_used);
+  if (k >= 2) {
+    std::vector<AutoCalibParams> fits;
+    for (int s = 0; s < k; ++s) {
+      const int lo = s * frames_used / k;
+      const int hi = (s + 1) * frames_used / k;
+      std::vector<int> idx;
+      for (size_t i = 0; i < pr.points.size(); ++i)
+        if (pr.points[i].frame >= lo && pr.points[i].frame < hi) idx.push_back(static_cast<int>(i));
+      fits.push_back(Refine(pr, idx, p, o.fine_truncation_px, o.max_iterations).params);
+    }
+    AutoCalibParams mean = AutoCalibParams::Zero(), var = AutoCalibParams::Zero();
+    for (const AutoCalibParams& f : fits) mean += f / k;
+    for (const AutoCalibParams& f : fits) var += (f - mean).cwiseAbs2() / (k - 1);
+    const AutoCalibParams sigma = (var / k).cwiseSqrt();
+    // The same spread of where the IR image's corners map, px.
+    const double w = pr.ir_size.width - 1, h = pr.ir_size.height - 1;
+    for (const Eigen::Vector2d& c : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0),
+                                     Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)}) {
+      const auto at = [&](const AutoCalibParams& q) {
+        return IrToColorPixel(q, pr.disparity, c.x(), c.y(), pr.typical_z);
+      };
+      Eigen::Vector2d m = Eigen::Vector2d::Zero();
+      for (const AutoCalibParams& f : fits) m += at(f) / k;
+      double v = 0;
+      for (const AutoCalibParams& f : fits) v += (at(f) - m).squaredNorm() / (k - 1);
+      result.corner_sigma_px = std::max(result.corner_sigma_px, std::sqrt(v / k));
+    }
+    result.sigma_A = sigma[0], result.sigma_B = sigma[1], result.sigma_C = sigma[2],
+    result.sigma_D = sigma[3];
+    if (result.corner_sigma_px > o.max_corner_sigma_px) {
+      result.reason =
+          "the edges do not pin the mapping down: fits on " + std::to_string(k) +
+          " parts of the recording disagree by " + Fixed(result.corner_sigma_px, 1) +
+          " px (1-sigma) at the image corners, need <= " + Fixed(o.max_corner_sigma_px, 1) +
+          " px; record objects whose outlines run in several directions across "
+          "the image";
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<Frame>& frames,
+                              const Calibration& start) {
+  o.Check();
+  start.Check();
+  if (frames.empty()) throw std::invalid_argument("AutoCalibrate: no frames");
+  for (const Frame& f : frames)
+    if (f.bgr.type() != CV_8UC3 || f.depth_m.type() != CV_32FC1 || f.bgr.empty() ||
+        f.depth_m.empty())
+      throw std::invalid_argument("AutoCalibrate: frame " + std::to_string(f.index) + " (" +
+                                  f.name + "): need CV_8UC3 colour and CV_32FC1 depth");
+  AutoCalibration result;
+  result.frames_given = static_cast<int>(frames.size());
+  Problem pr;
+  std::vector<int> used;  // index into frames per distance image
+  if (!PoolEdges(o, frames, start, &pr, &used, &result)) return result;
 
   std::vector<int> all(pr.points.size());
   std::iota(all.begin(), all.end(), 0);
@@ -483,47 +550,7 @@ AutoCalibration AutoCalibrate(const AutoCalibrateOptions& o, const std::vector<F
     return result;
   }
 
-  // Uncertainty: the spread of fits on disjoint blocks of consecutive used frames.
-  const int k = std::min(o.uncertainty_subsets, static_cast<int>(used.size()));
-  if (k >= 2) {
-    std::vector<AutoCalibParams> fits;
-    for (int s = 0; s < k; ++s) {
-      const int lo = s * static_cast<int>(used.size()) / k;
-      const int hi = (s + 1) * static_cast<int>(used.size()) / k;
-      std::vector<int> idx;
-      for (size_t i = 0; i < pr.points.size(); ++i)
-        if (pr.points[i].frame >= lo && pr.points[i].frame < hi) idx.push_back(static_cast<int>(i));
-      fits.push_back(Refine(pr, idx, p, o.fine_truncation_px, o.max_iterations).params);
-    }
-    AutoCalibParams mean = AutoCalibParams::Zero(), var = AutoCalibParams::Zero();
-    for (const AutoCalibParams& f : fits) mean += f / k;
-    for (const AutoCalibParams& f : fits) var += (f - mean).cwiseAbs2() / (k - 1);
-    const AutoCalibParams sigma = (var / k).cwiseSqrt();
-    // The same spread of where the IR image's corners map, px.
-    const double w = pr.ir_size.width - 1, h = pr.ir_size.height - 1;
-    for (const Eigen::Vector2d& c : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0),
-                                     Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)}) {
-      const auto at = [&](const AutoCalibParams& q) {
-        return IrToColorPixel(q, pr.disparity, c.x(), c.y(), pr.typical_z);
-      };
-      Eigen::Vector2d m = Eigen::Vector2d::Zero();
-      for (const AutoCalibParams& f : fits) m += at(f) / k;
-      double v = 0;
-      for (const AutoCalibParams& f : fits) v += (at(f) - m).squaredNorm() / (k - 1);
-      result.corner_sigma_px = std::max(result.corner_sigma_px, std::sqrt(v / k));
-    }
-    result.sigma_A = sigma[0], result.sigma_B = sigma[1], result.sigma_C = sigma[2],
-    result.sigma_D = sigma[3];
-    if (result.corner_sigma_px > o.max_corner_sigma_px) {
-      result.reason =
-          "the edges do not pin the mapping down: fits on " + std::to_string(k) +
-          " parts of the recording disagree by " + Fixed(result.corner_sigma_px, 1) +
-          " px (1-sigma) at the image corners, need <= " + Fixed(o.max_corner_sigma_px, 1) +
-          " px; record objects whose outlines run in several directions across "
-          "the image";
-      return result;
-    }
-  }
+  if (!MeasureUncertainty(o, pr, static_cast<int>(used.size()), p, &result)) return result;
   if (result.corner_sigma_px > o.warn_corner_sigma_px)
     result.warning = "the fit is uncertain by " + Fixed(result.corner_sigma_px, 1) +
                      " px (1-sigma at the image corners, fits on parts of the recording); check "

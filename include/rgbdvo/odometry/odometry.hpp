@@ -7,20 +7,16 @@
 #include <string>
 #include <vector>
 
-#include "rgbdvo/estimation/depth_alignment.hpp"
 #include "rgbdvo/estimation/motion_check.hpp"
-#include "rgbdvo/estimation/motion_estimate.hpp"
 #include "rgbdvo/estimation/ransac.hpp"
 #include "rgbdvo/estimation/refine.hpp"
 #include "rgbdvo/features/features.hpp"
-#include "rgbdvo/features/guided_matching.hpp"
 #include "rgbdvo/features/keypoint_tracking.hpp"
 #include "rgbdvo/features/matching.hpp"
 #include "rgbdvo/geometry/geometry.hpp"
 #include "rgbdvo/geometry/motion_prior.hpp"
 #include "rgbdvo/odometry/gravity_correction.hpp"
 #include "rgbdvo/odometry/point_pairs.hpp"
-#include "rgbdvo/odometry/track_staleness.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
 #include "rgbdvo/sources/frame.hpp"
 
@@ -29,7 +25,7 @@ namespace rgbdvo {
 struct OdometryOptions {
   FeatureOptions features;
   MatchOptions matching;
-  // Guided matching (issue 7): a reference keypoint is compared only with the current keypoints
+  // Guided matching: a reference keypoint is compared only with the current keypoints
   // within this radius of where the constant-velocity motion prior puts it (colour pixels; ratio
   // and mutual check from `matching`); an estimate that fails verification is redone with
   // brute-force matching. 0 = brute force only (the paper). See GuidedMatchOptions::radius_px.
@@ -64,24 +60,18 @@ struct OdometryOptions {
   // needed: on a frame that becomes a keyframe, on the frame before it (keyframe fusion), and
   // where the tracked estimate fails verification (that frame and the keyframe's next ones are
   // then matched as without tracking: the tracks no longer carry the motion). A new keyframe
-  // also when the tracks go stale: the refinement's measured pixel noise on them
-  // (EstimateNoiseScale) above track_stale_noise_ratio times the least measured on the
-  // keyframe's tracked frames so far (a tracked window drifts as the view changes, which the
-  // inlier count does not show; TrackStaleness). A frame that becomes a keyframe takes its
-  // pose from SIFT matching against the old keyframe where that verifies. Less CPU than SIFT
-  // on every frame and as accurate over all the recordings measured (shared, thinned,
-  // reversed, unregistered, synthetic laps; docs/benchmarks.md). false = SIFT and matching on
-  // every frame, as the paper (--preset paper).
+  // also when the tracks go stale: the refinement's measured pixel noise on them above
+  // track_stale_noise_ratio times the least measured on the keyframe's tracked frames so far
+  // (TrackStaleness). A frame that becomes a keyframe takes its pose from SIFT matching against
+  // the old keyframe where that verifies. Less CPU than SIFT on every frame, as accurate
+  // (docs/decisions/0038-tracking-by-default.md). false = SIFT and matching on every frame, as
+  // the paper (--preset paper).
   bool track_between_keyframes = true;
   // With tracking and fuse_keyframe_pose, true: the fusion's second estimate of a new
   // keyframe, from the tracked frame before it, by tracking the keyframe's keypoints back into
   // that frame (from where the motion prior puts them) instead of running SIFT on it and
-  // matching. SIFT then runs once per keyframe, not twice: 0.88 of the CPU on the fast turn,
-  // 0.89 on fr1_xyz, 0.92 on teddy. Measured against SIFT on the frame before
-  // (docs/benchmarks.md): as accurate on the shared and thinned recordings (0 of 108 runs
-  // behind a peer, ATE / RPE 1.005 / 0.993 / 0.985 of it) and better on the fast turns, but
-  // the ATE 1.4 % higher on unregistered depth, 13 % on every 4th-5th frame and on the
-  // synthetic robot laps: false, a speed option.
+  // matching. SIFT then runs once per keyframe, not twice: less CPU, a little less accurate
+  // on unregistered and strongly thinned recordings (docs/decisions/0039-track-fusion.md).
   bool track_fusion = false;
   TrackOptions tracking;
   double track_stale_noise_ratio = 1.5;
@@ -92,16 +82,14 @@ struct OdometryOptions {
   // When the features give no verified motion, align the frame's depth image with the last
   // estimated frame's or the depth keyframe's (depth_keyframe, below); status "icp".
   // DepthAligner: ICP from several starts, accepted only when the majority of the overlapping
-  // depth agrees. On fr1/desk's fast turn at every 3rd frame it turns 6 predicted frames (up to
-  // 49 degrees off) into ICP estimates within 5.5 degrees (see docs/benchmarks.md). false =
-  // features only (the paper).
+  // depth agrees (docs/decisions/0007-depth-fallback-verified.md). false = features only (the
+  // paper).
   bool depth_fallback = true;
   // In a run of frames aligned by depth, align each with the run's depth keyframe (the frame
   // the last alignment against the frame before was made with) while that succeeds and its
-  // surfaces constrain every direction; frame to frame otherwise. Frame-to-frame alignments
-  // add their errors up: textureless fr3/teddy (colour blanked, every frame aligned by depth)
-  // ATE 0.283 m frame to frame, 0.011 m with the keyframe (docs/benchmarks.md). false = always
-  // against the frame before.
+  // surfaces constrain every direction; frame to frame otherwise, where the alignments add
+  // their errors up (docs/decisions/0026-depth-keyframe.md). false = always against the frame
+  // before.
   bool depth_keyframe = true;
   // A frame whose motion cannot be estimated is reported at the constant-velocity prediction
   // (status "predicted"), so a failure run does not freeze the trajectory; false = at the last
@@ -119,14 +107,12 @@ struct OdometryOptions {
   // depth_term_translation_std_m. Such matches are few, or crowd on one surface far away where a
   // turn and a slide look alike; the depth surfaces (a floor, a wall) pin what they leave free.
   // Where the features pin the translation, the depth term adds little and under a fast turn
-  // its surfaces (read by another camera at another time) err more than the model says: added
-  // to every frame it raises fr1/desk's fast turn's rotational RPE by a fifth, past the dense
-  // peers. On the synthetic robot lap the gate at 4 mm lowers ATE 0.0110 -> 0.0083 m, and RPE
-  // 0.0076 -> 0.0033 m/s and 0.178 -> 0.070 deg/s (docs/benchmarks.md). depth_term_step 0 =
-  // features only (the paper); depth_term_translation_std_m 0 = on every frame.
+  // its surfaces (read by another camera at another time) err more than the model says
+  // (docs/decisions/0014-depth-term-gated.md). depth_term_step 0 = features only (the paper);
+  // depth_term_translation_std_m 0 = on every frame.
   int depth_term_step = 16;
   double depth_term_translation_std_m = 0.004;
-  // The motion model: "6dof" (any rigid motion, the paper) or "planar" (issue 16): the camera is
+  // The motion model: "6dof" (any rigid motion, the paper) or "planar": the camera is
   // rigidly mounted on a robot driving on a flat floor, so each frame's motion is a turn about
   // the floor's normal and a translation along the floor. 3 degrees of freedom instead of 6:
   // 2-pair RANSAC hypotheses (EstimatePlanarRansac), a refinement of those 3 parameters, the
@@ -225,15 +211,21 @@ struct FrameResult {
   std::string StatusString() const;
 };
 
-// Tracking policy. Each frame is matched against the keyframe (guided by the prediction, then
-// by brute force), then against the last accepted frame. When neither passes verification the
+// Tracking policy (src/odometry/tracker.hpp names its stages). Each frame is measured against
+// the keyframe (its keypoints tracked, else matched: guided by the prediction, then by brute
+// force), then against the last accepted frame. When neither passes verification the
 // depth images are aligned (depth_fallback); when that fails too the frame is reported at the
 // constant-velocity prediction (or held, see predict_failed_frames) and the next frame is matched
 // against the same references, never against the failed one, so the motion across the failure is
 // still measured, not lost.
+class Tracker;
+
 class Odometry {
  public:
   Odometry(const OdometryOptions& options, const Calibration& calib);
+  ~Odometry();
+  Odometry(const Odometry&) = delete;
+  Odometry& operator=(const Odometry&) = delete;
   // Extracts features from frame.bgr, then as below. The odometry keeps the frame's depth
   // image for the frames after it: a copy, or the image itself where the call holds the only
   // reference to it (a frame handed over with std::move, whose images nothing else refers to).
@@ -246,122 +238,26 @@ class Odometry {
   // How many threads a frame's own work may use at once (default 1). With 2 or more and
   // track_between_keyframes, SIFT on a new keyframe and on the frame before it (for the
   // keyframe fusion) run side by side. Results are the same either way.
-  void SetThreads(int threads) { threads_ = threads; }
-  const SiftExtractor& extractor() const { return extractor_; }
+  void SetThreads(int threads);
+  const SiftExtractor& extractor() const;
   const OdometryOptions& options() const { return options_; }
   const Calibration& calibration() const { return calib_; }
   // The motion model as used, one line: "6-DOF", or with "planar" the floor's normal and how it
   // was found (known once the first frame is processed).
-  std::string MotionModelBrief() const { return motion_brief_; }
+  std::string MotionModelBrief() const;
   // With the planar model, once the first frame is processed: its level frame (planar_motion.hpp).
-  const std::optional<Eigen::Matrix3d>& level_from_cam() const { return level_from_cam_; }
+  const std::optional<Eigen::Matrix3d>& level_from_cam() const;
   // With gravity_correction: the readings taken, their mean weight and the largest tilt
   // between a frame and its reading, one line; "" without.
   std::string GravityBrief() const;
 
  private:
-  // r (from Track) moved to the colour camera.
+  // r (from the tracker, in the IR camera's frame) moved to the colour camera.
   FrameResult InColorCamera(FrameResult r) const;
-  // Process in the IR camera's frame, where the tracking works: poses and velocity of the IR
-  // camera. Process moves them to the colour camera.
-  // features: nullopt when SIFT is to run only where needed (track_between_keyframes).
-  FrameResult Track(Frame frame, std::optional<Features> features);
-
-  struct Reference {
-    Features features;
-    KeypointPoints points;  // the 3D point of each keypoint (or none), lifted once
-    // The depth image, for the depth fallback and term and for lifting later (else empty).
-    cv::Mat depth_m;
-    Rigid3d depth_from_cam = Rigid3d::Identity();  // the depth camera at the depth image's time
-    std::vector<Eigen::Vector3d> depth_points;     // SampleDepthPoints, in this camera
-    Rigid3d world_from_cam = Rigid3d::Identity();
-    Rigid3d world_from_cam_6dof = Rigid3d::Identity();  // planar model: the 6-DOF chain
-    int frame = -1;
-    double color_timestamp = 0;  // seconds (Frame::color_timestamp)
-    int first_inliers = -1;      // inliers of the first frame matched against it
-    // With track_between_keyframes: SIFT is run on a frame only when it is needed
-    // (EnsureFeatures: from `grey`, lifted with depth_m); until then `features` and `points`
-    // are empty.
-    bool has_features = true;
-    cv::Mat grey;             // the grey colour image (GreyImage)
-    TrackingPyramid pyramid;  // the grey image's, to track keypoints into (and from, as a keyframe)
-    // As a keyframe: the Lucas-Kanade windows of the keypoints last tracked from it (made at the
-    // first frame that tracks them, kept for the next).
-    LkWindows windows;
-    // As a keyframe: the keypoints tracked into the next frames (SelectSpread; chosen at the
-    // first tracked frame), and when they go stale (made at the first tracked frame).
-    std::vector<int> tracked;
-    std::optional<TrackStaleness> staleness;
-    // Set when a frame's tracks failed and SIFT matching reached the keyframe: its next frames
-    // are matched by SIFT (tracking resumes from the next keyframe).
-    bool tracks_lost = false;
-    bool pose_from_features = true;  // else from the depth alignment
-  };
-  // Motion ref_from_cur (in result.prev_from_cur) with verification; fills r's counts. Guided
-  // by world_from_cur_pred, with a brute-force retry if that fails verification, and guided
-  // again around the estimate where the prior was off (guided_rematch).
-  MotionEstimate Estimate(const Reference& ref, const Reference& cur,
-                          const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
-  // RANSAC and refinement on the 3D pairs of `matches`; match_of_pair as in PairMatches.
-  // cur_points: the 3D points of the matches' current keypoints (trainIdx).
-  MotionEstimate EstimateFromMatches(const Reference& ref, const Reference& cur,
-                                     const KeypointPoints& cur_points,
-                                     const std::vector<cv::DMatch>& matches, FrameResult* r,
-                                     std::vector<int>* match_of_pair);
-  // With track_between_keyframes: the keyframe's keypoints tracked into cur, from where
-  // world_from_cur_pred puts them, and the motion from the tracked pairs (fills r's counts).
-  MotionEstimate EstimateTracked(const Reference& cur, const Rigid3d& world_from_cur_pred,
-                                 FrameResult* r);
-  // ref's keypoints `tracked` (indices) tracked into cur from where cur_from_ref_pred puts them,
-  // and the motion ref_from_cur from the tracked pairs (fills r's counts); ref's pyramid gets
-  // its derivatives.
-  MotionEstimate EstimateFromTracks(Reference* ref, const std::vector<int>& tracked,
-                                    const Reference& cur, const Rigid3d& cur_from_ref_pred,
-                                    FrameResult* r);
-  // With track_between_keyframes: runs SIFT on ref and lifts its keypoints, once. With
-  // `beside` (and SetThreads >= 2), the same for it, its SIFT on a second thread meanwhile.
-  void EnsureFeatures(Reference* ref, FrameResult* r, Reference* beside = nullptr);
-
-  // With the planar model: the level frame from the first frame's depth or the given mount
-  // (throws std::runtime_error when the floor is not found).
-  void SetUpMotionModel(const Frame& first);
-
-  // Makes cur (now at world_from_cur) the last estimated frame; keyframe per the policy. The
-  // velocity is measured from `measured_from` (its pose and time) to cur.
-  void Advance(Reference cur, bool new_keyframe, const Reference& measured_from);
-  // With gravity_correction and a reading: turns the last estimated frame, and every pose the
-  // next frames are chained from, toward the reading's down (GravityCorrection).
-  void CorrectTilt(const Frame& frame);
-  // From world_from_before_ to last_, per second of colour time (zero without both).
-  Velocity LastVelocity() const;
 
   OdometryOptions options_;
-  Calibration calib_;
-  SiftExtractor extractor_;
-  Rng rng_;
-  std::unique_ptr<DepthAligner> depth_aligner_;    // with depth_fallback
-  cv::Mat depth_rays_;                             // DepthRays, with depth_term_step
-  std::optional<Eigen::Matrix3d> level_from_cam_;  // with the planar model
-  std::optional<GravityCorrection> gravity_;       // with gravity_correction
-  std::string motion_brief_;
-  int threads_ = 1;  // SetThreads
-  bool started_ = false;
-  Reference key_;   // what frames are matched against
-  Reference last_;  // the last accepted frame (fallback when the keyframe fails)
-  // Where the velocity at last_ was measured from (pose and colour time): the accepted frame
-  // before it, or the keyframe (see Advance); for the constant-velocity prior.
-  bool has_before_ = false;
-  Rigid3d world_from_before_ = Rigid3d::Identity();
-  double before_color_time_ = 0;
-  int rejected_run_ = 0;
-  // The depth keyframe of the current run of frames aligned by depth (depth_keyframe); frame -1
-  // before the first alignment.
-  struct DepthKeyframe {
-    cv::Mat depth_m;
-    Rigid3d world_from_cam = Rigid3d::Identity();
-    int frame = -1;
-  };
-  DepthKeyframe depth_key_;
+  Calibration calib_;  // as used: without distortion unless options.undistort
+  std::unique_ptr<Tracker> tracker_;
 };
 
 }  // namespace rgbdvo
