@@ -111,7 +111,7 @@ void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {
 void LimitOpenCvThreads() {
   // One thread: one core. N feature workers already keep every core busy, so OpenCV's own
   // parallel loops (cvtColor and the like, inside each worker) would only add threads that
-  // compete with them (fr1_xyz, 2 workers, 3 alternating runs each: 33.6 -> 34.1 fps).
+  // compete with them (docs/decisions/0001-own-sift-guided-matching-workers.md).
   cv::setNumThreads(1);
 }
 

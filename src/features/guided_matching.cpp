@@ -20,7 +20,7 @@ namespace {
 
 // Squared L2 distance of two byte descriptors (vectorised where the caller is: 16-bit
 // differences, 32-bit sums). cv::normL2Sqr<uint8_t, int> gives the same sums, but compiled for
-// the baseline CPU only: whole runs took 1.04-1.09 times the CPU with it (fr1_xyz, paired runs).
+// the baseline CPU only, where whole runs measured slower with it.
 inline int DistanceSq(const uint8_t* a, const uint8_t* b, int n) {
   int sum = 0;
   for (int k = 0; k < n; ++k) {

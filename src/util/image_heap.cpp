@@ -15,10 +15,9 @@ size_t SetUpImageHeap(size_t huge_page_bytes) {
 #if defined(__GLIBC__)
   // NOLINTBEGIN(concurrency-mt-unsafe): this runs first in main, before any thread is started.
   constexpr int kMiB = 1 << 20;
-  // Freed images stay in the heap (docs/benchmarks.md, "Memory handed back to the kernel"): CPU
-  // x0.83-0.92 with two workers, x0.96-0.99 with one; peak memory 5-10 MiB more, and bounded
-  // over long replays as before (24000 frames: 137 MiB against 130). 32 MiB is the largest mmap
-  // threshold glibc accepts on 64-bit systems.
+  // Freed images stay in the heap, so a frame does not fault their pages in again
+  // (docs/decisions/0027-memory-kept-by-the-allocator.md). 32 MiB is the largest mmap threshold
+  // glibc accepts on 64-bit systems.
   mallopt(M_MMAP_THRESHOLD, 32 * kMiB);
   // Above the advised room too: trimmed, the heap would grow back without the advice.
   const size_t trim = std::max(size_t{256} * kMiB, 2 * huge_page_bytes);

@@ -95,7 +95,7 @@ TEST_CASE("rgbdvo run on the real fr1/xyz excerpt follows the ground truth") {
 
 TEST_CASE("rgbdvo run carries the real fast turn of fr1/desk without a failed frame") {
   // data/tum_fr1_desk_turn24: 24 frames (0.8 s) of fr1/desk's fast turn with motion blur, where
-  // the default before issue 12 rejected every frame from the 6th on. Measured over RANSAC seeds
+  // an earlier default rejected every frame from the 6th on. Measured over RANSAC seeds
   // 42 and 1-7: every frame estimated from features (0-1 of them 'recovered'), ATE RMSE
   // 0.017-0.021 m over all 24 poses (--preset paper: 0.032 m, one frame rejected). Bound 0.03 m.
   const std::string dir = MakeTempDir("turn");

@@ -480,7 +480,8 @@ TEST_CASE("A new keyframe's pose is measured against the last frame too") {
   // without it agree exactly, from it on they differ. On exact rendering both stay as exact as
   // pixel quantisation allows (measured: at most 3.2 mm; summed over 40 frames 60 mm fused
   // against 46 mm: on clean data the second estimate adds the last frame's own error and gains
-  // nothing; on real recordings it replaces a keyframe's weakest estimate, docs/benchmarks.md).
+  // nothing; on real recordings it replaces a keyframe's weakest estimate,
+  // docs/decisions/0018-keyframe-fusion.md).
   const SyntheticScene scene;
   const PinholeCamera cam;
   const std::vector<Rigid3d> path = MakeSmoothPath(40, 0.02, 1.5);

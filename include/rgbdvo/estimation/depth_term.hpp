@@ -1,9 +1,9 @@
 #pragma once
-// The depth images' own evidence in the refinement (beyond the paper, issue 12): point-to-plane
-// residuals between the current frame's depth points and the reference's depth surface, by
-// projective association (as KinectFusion's ICP), added to the feature residuals. The features
-// fix the motion where the scene has texture; the depth surface pins it where the features are
-// few or their depth is read off an edge.
+// The depth images' own evidence in the refinement (beyond the paper;
+// docs/decisions/0014-depth-term-gated.md): point-to-plane residuals between the current frame's
+// depth points and the reference's depth surface, by projective association (as KinectFusion's
+// ICP), added to the feature residuals. The features fix the motion where the scene has texture;
+// the depth surface pins it where the features are few or their depth is read off an edge.
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>

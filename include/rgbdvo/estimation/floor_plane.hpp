@@ -1,8 +1,8 @@
 #pragma once
 // The floor under a camera rigidly mounted on a ground robot, from one depth image: the
 // camera-to-floor extrinsic (height, roll, pitch) that the planar motion model needs
-// (planar_motion.hpp; issue 16). RANSAC over planes through 3 back-projected pixels, then
-// weighted least-squares planes through the inliers.
+// (planar_motion.hpp; docs/decisions/0010-planar-motion.md). RANSAC over planes through 3
+// back-projected pixels, then weighted least-squares planes through the inliers.
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>

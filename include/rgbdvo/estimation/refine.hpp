@@ -1,6 +1,7 @@
 #pragma once
 // Refinement of a frame-to-frame motion by weighted, robust least squares on the image
-// reprojection and depth residuals of the inlier matches (beyond the paper, issue 6).
+// reprojection and depth residuals of the inlier matches (beyond the paper;
+// docs/decisions/0002-additions-beyond-the-paper.md).
 
 #include <Eigen/Core>
 #include <optional>

@@ -22,8 +22,9 @@ struct FeatureOptions {
   // base blur of 1 pixel, the finest the pixel grid holds (the camera's own blur is about 0.5),
   // and a contrast threshold of 0.015 (Lowe's 0.04 counts for the 2x-upsampled image, whose
   // finest scales this scale space does not have): about as many inliers as Lowe's detector on
-  // the 2x-upsampled image or more, at about half the CPU of a frame (docs/benchmarks.md,
-  // issue 20). Lowe() below is Lowe's (and OpenCV's) detector.
+  // the 2x-upsampled image or more, at about half the CPU of a frame
+  // (docs/decisions/0015-native-resolution-sift.md). Lowe() below is Lowe's (and OpenCV's)
+  // detector.
   double contrast_threshold = 0.015;  // SIFT DoG contrast threshold (Lowe/OpenCV: 0.04)
   double edge_threshold = 10.0;       // SIFT edge response ratio (Lowe/OpenCV: 10)
   double sigma = 1.0;                 // SIFT base blur (Lowe/OpenCV: 1.6)

@@ -1,7 +1,8 @@
 #pragma once
 // Keypoints followed from one image into another by pyramidal Lucas-Kanade (OpenCV's): between
 // keyframes the keyframe's keypoints are tracked into each frame instead of SIFT being run and
-// matched there (OdometryOptions::track_between_keyframes, issue 20).
+// matched there (OdometryOptions::track_between_keyframes;
+// docs/decisions/0038-tracking-by-default.md).
 
 #include <opencv2/core.hpp>
 #include <optional>
@@ -13,8 +14,8 @@ namespace rgbdvo {
 
 struct TrackOptions {
   // The Lucas-Kanade window's side, pixels. A SIFT keypoint is the centre of a blob of about
-  // its scale (2-3 px at the finest); 9, 11 and 13 px track about equally well (the odometry's
-  // accuracy over the shared folders: docs/benchmarks.md), the cost grows with the area.
+  // its scale (2-3 px at the finest); 9, 11 and 13 px track about equally well
+  // (docs/decisions/0032-track-option.md), the cost grows with the area.
   int window_px = 9;
   // Pyramid levels above the image: each halves the motion the window has to catch (3: a
   // prediction off by up to about 8 window sides is still caught).
@@ -22,7 +23,7 @@ struct TrackOptions {
   // > 0: a track is kept only when tracking it back from where it landed returns within this
   // distance of where it started, pixels (twice the work). 0: not checked; RANSAC and the
   // refinement's inlier selection sort the tracks, and measured that is better: the check
-  // drops right tracks in motion blur (docs/benchmarks.md).
+  // drops right tracks in motion blur (docs/decisions/0032-track-option.md).
   double max_back_error_px = 0;
   // At most this many of the keyframe's keypoints (with a 3D point) are tracked: the strongest of
   // each cell of an 8 x 8 grid in turn, so that they cover the image as the matches do.
@@ -30,10 +31,7 @@ struct TrackOptions {
   // true: after the pyramid, each track is refined at the finest level with the keyframe's
   // window warped as the predicted motion shows it (RefineWarped). OpenCV's window only shifts:
   // as the view moves on from the keyframe, its content grows, shrinks and shears, and the track
-  // slides (the synthetic robot lap's tracked poses erred 1.0 mm against their keyframe at ages
-  // 0-4 frames and 3.9 mm at 25-29; warped, 1.0 and 1.8). Measured (docs/benchmarks.md): the
-  // three synthetic robot laps' mean ATE 0.0097 -> 0.0078 m, the shared recordings as
-  // accurate (0 of 108 runs behind a peer, with or without it), 6 % more instructions.
+  // slides away from its keyframe as the keyframe ages (docs/decisions/0036-warped-window.md).
   // false = OpenCV's shifted window alone.
   bool warp = true;
   // The refinement's iterations at most, and how far it may move a track, pixels: farther, it

@@ -1,7 +1,7 @@
 #pragma once
-// Roll and pitch against gravity (issue 16): a complementary filter between the odometry's
-// orientation, good over short times and drifting slowly, and the accelerometer's gravity,
-// noisy (every acceleration of the camera tilts it) but without drift.
+// Roll and pitch against gravity (docs/decisions/0011-gravity.md): a complementary filter between
+// the odometry's orientation, good over short times and drifting slowly, and the accelerometer's
+// gravity, noisy (every acceleration of the camera tilts it) but without drift.
 //
 // The world's down is the weighted mean of the readings of the first time constant, turned into
 // the world by the poses they were taken at (the odometry has drifted least then; a mean over

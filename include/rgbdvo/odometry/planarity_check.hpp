@@ -1,5 +1,5 @@
 #pragma once
-// Whether the planar motion model still holds (issue 16): with --motion planar every frame's
+// Whether the planar motion model still holds: with --motion planar every frame's
 // motion is also refined with all 6 degrees of freedom on the same inliers, and those 6-DOF
 // motions are chained alongside (FrameResult::world_from_cam_6dof). On a flat floor that chain
 // only wanders by the estimates' noise; on a ramp, a kerb or in a hand-held camera it tilts or
@@ -19,8 +19,8 @@ namespace rgbdvo {
 struct PlanarityCheckOptions {
   // A robot on a flat floor tilts by its suspension's rocking (a degree or two) and does not
   // climb; the 6-DOF chain's noise over a second is below a degree and a centimetre (measured
-  // on the synthetic robot recording, docs/benchmarks.md). Beyond these within window_s, the
-  // motion is not planar.
+  // on the synthetic robot recording, docs/decisions/0010-planar-motion.md). Beyond these
+  // within window_s, the motion is not planar.
   double window_s = 1.0;      // seconds of colour time compared
   double max_tilt_deg = 5.0;  // change of the floor's normal in the 6-DOF chain, deg
   double max_climb_m = 0.05;  // change of height along the floor's normal, m

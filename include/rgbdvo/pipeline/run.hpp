@@ -24,16 +24,13 @@ struct RunOptions {
   // source keep it small: a backlog should wait in the source's queue, where the newest frame
   // wins (rgbdvo capture uses the number of workers). 2: decoding alone (SIFT runs where the
   // odometry needs it) keeps well ahead of the odometry; each frame more in flight is 2.7 MB
-  // whose pages are faulted in once more (fast90, 2 workers, 4 -> 2: 10000 -> 8700 page faults,
-  // system time 130 -> 100 ms, the same wall time; SIFT on every frame, --no-track: the same).
+  // whose pages are faulted in once more (docs/decisions/0045-page-faults-and-huge-pages.md).
   int queue_frames = 2;
   // With 2 or more threads and tracking between keyframes: a new keyframe's SIFT and the frame
   // before's (for the keyframe fusion) run side by side on two threads (Odometry::SetThreads).
   // Off by default: it shortens those frames, but where the two processors share their memory
-  // or other work runs, the two runs slow each other and cost CPU (docs/benchmarks.md, "A new
-  // keyframe's two SIFT runs one after the other": 2 workers, CPU 0.90-0.94 and wall time
-  // 1.05-1.09 of side by side on an AMD machine; an idle Intel machine ran them side by side
-  // at no CPU cost, wall time 0.78-0.87). The frame rate stays far above 60 fps either way.
+  // or other work runs, the two runs slow each other and cost CPU
+  // (docs/decisions/0046-keyframe-sift-one-after-the-other.md).
   bool parallel_keyframe_sift = false;
   static constexpr int kMaxAutoThreads = 4;  // more workers gain nothing: decoding is serial
   void Check() const;

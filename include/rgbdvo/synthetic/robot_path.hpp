@@ -1,5 +1,5 @@
 #pragma once
-// A ground robot's recording with ground truth (issue 16): a Kinect rigidly mounted on a robot
+// A ground robot's recording with ground truth: a Kinect rigidly mounted on a robot
 // that drives a rectangle with rounded corners on the floor of SyntheticScene::RobotHall, like
 // the laps of the paper's Fig. 5. The motion is strictly planar: only x, z and the yaw of the
 // robot change; the camera's height above the floor, its mount pitch and roll stay fixed.

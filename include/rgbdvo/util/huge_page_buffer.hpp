@@ -1,8 +1,8 @@
 #pragma once
 // A large float buffer that the kernel may back with transparent huge pages (2 MiB). A fresh
 // 4 KiB page costs a page fault when first touched, and on a virtual machine a fault costs about
-// 10 us: the SIFT scale space faulted in some 4300 pages on every run (45 ms, 3 % of fast90's
-// CPU with one thread; docs/benchmarks.md), as huge pages a dozen. The advice is only advice:
+// 10 us: the SIFT scale space's thousands of small pages are a dozen huge ones
+// (docs/decisions/0045-page-faults-and-huge-pages.md). The advice is only advice:
 // where the kernel offers no huge pages (THP disabled, another OS) the buffer is an ordinary one.
 
 #include <cstddef>

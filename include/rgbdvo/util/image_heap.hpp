@@ -2,7 +2,8 @@
 // The process's heap set up for images. Every frame allocates and frees images of about a
 // megabyte (the decoded colour and depth, the depth the odometry keeps, the scale space); glibc's
 // defaults map such blocks afresh and hand them back on free, so every frame pays its page faults
-// again, and a fresh 4 KiB page costs about 10 us on a virtual machine (docs/benchmarks.md).
+// again, and a fresh 4 KiB page costs about 10 us on a virtual machine
+// (docs/decisions/0027-memory-kept-by-the-allocator.md, 0045-page-faults-and-huge-pages.md).
 // A process-wide policy: the program's main calls it first, libraries leave the heap alone.
 
 #include <cstddef>

@@ -191,9 +191,9 @@ RGBDVO_SIMD_CLONES float OrientationHistogram(const cv::Mat& level, int x, int y
 
 RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, float sigma,
                                        float angle_deg, uint8_t* out) {
-  // The window is centred on the pixel nearest the keypoint, as OpenCV centres it (measured:
-  // centring it on the sub-pixel position made the odometry less accurate on fr1/xyz, 5-seed
-  // mean RPE 0.0211 against 0.0197 m/s).
+  // The window is centred on the pixel nearest the keypoint, as OpenCV centres it: centred on
+  // the sub-pixel position the odometry was less accurate on fr1/xyz
+  // (docs/decisions/0001-own-sift-guided-matching-workers.md).
   x = std::round(x);
   y = std::round(y);
   const Grid& grid = TheGrid();

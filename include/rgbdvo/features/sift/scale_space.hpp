@@ -19,9 +19,8 @@ struct ScaleSpaceOptions {
   // octave -1 of OpenCV's SIFT); false: it has the image's own resolution.
   bool upsample = true;
   // Gaussian kernels are cut at this many sigmas (OpenCV's SIFT: 4). The weight beyond 3 sigma
-  // is 0.27%, a quarter of the work: measured with 5 RANSAC seeds, 3 was as accurate as 4 (mean
-  // ATE / RPE fr1_xyz 0.0114 / 0.0181 against 0.0121 / 0.0197, fr3_teddy 0.0108 / 0.0125
-  // against 0.0128 / 0.0129).
+  // is 0.27%, a quarter of the work: measured over 5 RANSAC seeds on fr1_xyz and fr3_teddy, 3
+  // was as accurate as 4.
   double kernel_sigmas = 3.0;
   void Check() const;
 };
