@@ -29,6 +29,7 @@ void AddCaptureCommand(CLI::App& app) {
 
 #else
 
+#include "debug_flags.hpp"
 #include "rgbdvo/capture/kinect_source.hpp"
 #include "rgbdvo/pipeline/run.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
@@ -41,7 +42,7 @@ struct CaptureArgs {
   std::string calib, pairing = "nearest";
   TrajectoryOutputs outputs;
   bool quiet = false, no_drop = false, no_accel = false;
-  int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
+  int frame_delay_ms = 0;  // tests only (debug_flags.hpp): an odometry this much slower
   KinectSourceOptions kinect;
   RunOptions run;
   std::unique_ptr<OdometryFlags> odometry_flags;

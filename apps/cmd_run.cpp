@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "debug_flags.hpp"
 #include "recording_input.hpp"
 #include "rgbdvo/evaluation/plot.hpp"
 #include "rgbdvo/pipeline/run.hpp"
@@ -24,7 +25,7 @@ struct RunArgs {
   std::string plot;
   TrajectoryOutputs outputs;
   bool quiet = false, timing = false;
-  int frame_delay_ms = 0;  // hidden, for tests: an odometry this much slower per frame
+  int frame_delay_ms = 0;  // tests only (debug_flags.hpp): an odometry this much slower
   RunOptions run;
   FrameRange range;
   std::unique_ptr<OdometryFlags> odometry_flags;

@@ -82,17 +82,6 @@ void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) con
                                  " and " + outputs[j].second);
 }
 
-void AddFrameDelayFlag(CLI::App* cmd, int* ms) {
-  cmd->add_option("--debug-frame-delay-ms", *ms,
-                  "for tests: sleep this long after each frame, as an odometry that much slower")
-      ->check(CLI::NonNegativeNumber)
-      ->group("");  // hidden from --help
-}
-
-void DelayFrame(int ms) {
-  if (ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(ms));
-}
-
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {
   cmd->add_option("--threads", options->threads,
                   "1 = everything on one core (OpenCV's loops too); N >= 2 = N feature workers "

@@ -35,11 +35,6 @@ struct TrajectoryOutputs {
 // --pairing into *pairing ("nearest" or "one-to-one", as ParsePairing takes it).
 void AddPairingFlag(CLI::App* cmd, std::string* pairing);
 
-// The hidden --debug-frame-delay-ms into *ms (for tests: an odometry that much slower), and the
-// sleep it asks for after each frame.
-void AddFrameDelayFlag(CLI::App* cmd, int* ms);
-void DelayFrame(int ms);
-
 // --threads into options->threads.
 void AddThreadsFlag(CLI::App* cmd, RunOptions* options);
 // Turns OpenCV's own parallel loops off: our threads (one, or the feature workers) are the

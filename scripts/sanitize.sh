@@ -9,7 +9,7 @@ jobs=$(nproc)
 
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g1 -DNDEBUG" \
   -DENABLE_ASAN=ON >/dev/null
-cmake --build build-asan -j"$jobs" --target rgbdvo rgbdvo_tests
+cmake --build build-asan -j"$jobs" --target rgbdvo rgbdvo_debug rgbdvo_tests
 # fakenect's library is preloaded into rgbdvo by the capture tests: ASan's runtime is then not
 # first in the library list, which is harmless here. Left out: the fuzz replays (scripts/fuzz.sh
 # runs those parsers under ASan and UBSan), the calibration window under Xvfb (timing-bound) and

@@ -14,7 +14,7 @@ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-
   -DENABLE_TSAN=ON \
   -DRGBDVO_TESTS_MATCHING='/(util/bounded_queue|pipeline/run|features/features|capture/fakenect_recorder|apps/cli_capture|apps/cli_run)_test\.cpp$' \
   >/dev/null
-cmake --build build-tsan -j"$(nproc)" --target rgbdvo rgbdvo_tests
+cmake --build build-tsan -j"$(nproc)" --target rgbdvo rgbdvo_debug rgbdvo_tests
 # exitcode 66 on any report: the test binary, and each rgbdvo the command-line tests start.
 export TSAN_OPTIONS="halt_on_error=0 exitcode=66 suppressions=$PWD/tests/tsan.supp"
 build-tsan/tests/rgbdvo_tests --warn NoTests \

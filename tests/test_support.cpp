@@ -128,6 +128,7 @@ int RunCommand(const std::string& command, std::string* output) {
 }
 
 std::string RgbdvoExe() { return RGBDVO_EXE; }
+std::string RgbdvoDebugExe() { return RGBDVO_DEBUG_EXE; }
 std::string SourceDir() { return RGBDVO_SOURCE_DIR; }
 
 std::pair<int, int> PngSize(const std::string& path) {

@@ -46,8 +46,10 @@ std::pair<int, int> PngSize(const std::string& path);
 // Runs a shell command; returns its exit status and puts stdout+stderr into *output.
 int RunCommand(const std::string& command, std::string* output);
 
-// Path of the built rgbdvo executable and of the source tree.
+// Path of the built rgbdvo executable, of its test build (the same with the tests' own flags,
+// apps/debug_flags.hpp) and of the source tree.
 std::string RgbdvoExe();
+std::string RgbdvoDebugExe();
 std::string SourceDir();
 
 }  // namespace rgbdvo::test

@@ -51,9 +51,12 @@ const std::string& Recording(std::vector<Rigid3d>* truth = nullptr) {
 
 // `rgbdvo capture` replaying `rec` through fakenect (calibration: the synthetic one).
 int Capture(const std::string& rec, const std::string& args, std::string* out) {
-  return RunCommand("fakenect " + rec + " " + RgbdvoExe() + " capture --calib " + Recording() +
-                        "/calib.yaml " + args,
-                    out);
+  // The test build where the arguments use its flags (apps/debug_flags.hpp).
+  const std::string exe =
+      args.find("--debug-") != std::string::npos ? RgbdvoDebugExe() : RgbdvoExe();
+  return RunCommand(
+      "fakenect " + rec + " " + exe + " capture --calib " + Recording() + "/calib.yaml " + args,
+      out);
 }
 
 // The r-/d-/a- entries of a recording: type, device timestamp and the file's bytes.
@@ -333,7 +336,7 @@ TEST_CASE("rgbdvo capture killed with SIGKILL leaves a recording that lists only
       "lib=$(sed -n 's/.*LD_LIBRARY_PATH=\"\\([^:]*\\):.*/\\1/p' \"$(command -v fakenect)\" | head "
       "-n 1); "
       "FAKENECT_PATH=" +
-      rec + " LD_LIBRARY_PATH=$lib " + RgbdvoExe() + " capture --calib " + rec +
+      rec + " LD_LIBRARY_PATH=$lib " + RgbdvoDebugExe() + " capture --calib " + rec +
       "/calib.yaml --no-drop --debug-frame-delay-ms 200 --record " + dir + "/out --csv " + dir +
       "/t.csv & pid=$!; "
       "for i in $(seq 600); do [ \"$(cat " +

@@ -220,9 +220,9 @@ TEST_CASE(
     const std::string dir = MakeTempDir("run_signal");
     // 300 ms per frame (hidden test flag): the signal comes while the run is in its middle.
     const std::string script =
-        RgbdvoExe() + " run " + SourceDir() + "/data/tum_fr1_desk_turn24 --calib " + SourceDir() +
-        "/calib/tum_fr1.yaml --quiet --debug-frame-delay-ms 300 --csv " + dir + "/t.csv --tum " +
-        dir + "/t.txt & pid=$!; " + "for i in $(seq 600); do [ \"$(cat " + dir +
+        RgbdvoDebugExe() + " run " + SourceDir() + "/data/tum_fr1_desk_turn24 --calib " +
+        SourceDir() + "/calib/tum_fr1.yaml --quiet --debug-frame-delay-ms 300 --csv " + dir +
+        "/t.csv --tum " + dir + "/t.txt & pid=$!; " + "for i in $(seq 600); do [ \"$(cat " + dir +
         "/t.csv 2>/dev/null | wc -l)\" -ge 4 ] && break; sleep 0.1; "
         "done; kill -" +
         signal_name + " $pid; wait $pid; echo exit=$?";
@@ -321,9 +321,21 @@ TEST_CASE("rgbdvo run --start/--max-frames runs a part, keeping the recording's 
   CHECK_THAT(out, Catch::Contains("start frame 6 is beyond the recording's end (it has 6 frames)"));
 }
 
+TEST_CASE("The installed rgbdvo has no test-only flags; its test build has") {
+  const std::string run = " run " + SourceDir() + "/data/tum_fr1_desk_turn24 --calib " +
+                          SourceDir() + "/calib/tum_fr1.yaml --max-frames 2 --quiet" +
+                          " --debug-frame-delay-ms 1";
+  std::string out;
+  CHECK(RunCommand(RgbdvoExe() + run, &out) != 0);
+  CHECK_THAT(out, Catch::Contains("debug-frame-delay-ms"));
+  CHECK(RunCommand(RgbdvoDebugExe() + run, &out) == 0);
+  CHECK(RunCommand(RgbdvoExe() + " run --help", &out) == 0);
+  CHECK_THAT(out, !Catch::Contains("debug"));
+}
+
 TEST_CASE("rgbdvo run shows a status line on a terminal, none otherwise or with --quiet") {
   // `script` (util-linux, in every Debian) gives the run a pseudo-terminal.
-  const std::string run = RgbdvoExe() + " run " + SourceDir() +
+  const std::string run = RgbdvoDebugExe() + " run " + SourceDir() +
                           "/data/tum_fr1_desk_turn24 --calib " + SourceDir() +
                           "/calib/tum_fr1.yaml --debug-frame-delay-ms 50";
   std::string out;
