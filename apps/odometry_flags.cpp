@@ -16,7 +16,7 @@ std::string TypeName(const OdometryParameter& p) {
   return std::visit(
       [](auto* field) -> std::string {
         using T = std::remove_pointer_t<decltype(field)>;
-        if constexpr (std::is_same_v<T, std::string>) return "NAME";
+        if constexpr (std::is_enum_v<T>) return "NAME";
         if constexpr (std::is_same_v<T, double>) return "FLOAT";
         return "INT";
       },

@@ -2,9 +2,7 @@
 # link the library, the man page, bash completion and the .deb (cpack). docs/install.md.
 include(CMakePackageConfigHelpers)
 
-# The program, the library (static) and its public headers. The SIFT kernels' internals (blur,
-# descriptor) and the SIMD clone macro (util/simd.hpp) are included by the library's sources alone
-# and stay private.
+# The program, the library (static) and its public headers.
 set(RGBDVO_INSTALL_TARGETS rgbdvo_lib)
 if(RGBDVO_WITH_KINECT)
   list(APPEND RGBDVO_INSTALL_TARGETS rgbdvo_kinect)
@@ -13,10 +11,30 @@ install(TARGETS rgbdvo RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS ${RGBDVO_INSTALL_TARGETS} EXPORT rgbdvoTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY include/rgbdvo DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        PATTERN "simd.hpp" EXCLUDE
-        PATTERN "gaussian_blur.hpp" EXCLUDE
-        PATTERN "sift_descriptor.hpp" EXCLUDE)
+# Public: the folders a program using the library includes, and the headers they include in
+# turn. Private (not installed): SIFT's and Lucas-Kanade's internals, the SIMD kernels, the PNG
+# decoder, util/ (but the queue a KinectSource holds), calibration, synthetic scenes, and the
+# ROS bag source, whose library is not installed. tests/install/install_test.sh compiles every
+# installed header against the installed tree alone.
+set(RGBDVO_PUBLIC_HEADER_DIRS odometry sources sensor io evaluation pipeline)
+set(RGBDVO_PUBLIC_HEADERS
+    estimation/depth_term.hpp estimation/motion_check.hpp estimation/motion_estimate.hpp
+    estimation/point_pair.hpp estimation/ransac.hpp estimation/refine.hpp
+    features/features.hpp features/matching.hpp features/track_options.hpp
+    geometry/geometry.hpp geometry/motion_prior.hpp)
+if(RGBDVO_WITH_KINECT)
+  list(APPEND RGBDVO_PUBLIC_HEADER_DIRS capture)
+  list(APPEND RGBDVO_PUBLIC_HEADERS util/bounded_queue.hpp)
+endif()
+foreach(dir ${RGBDVO_PUBLIC_HEADER_DIRS})
+  install(DIRECTORY include/rgbdvo/${dir} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rgbdvo
+          PATTERN "png_decoder.hpp" EXCLUDE
+          PATTERN "rosbag_source.hpp" EXCLUDE)
+endforeach()
+foreach(header ${RGBDVO_PUBLIC_HEADERS})
+  get_filename_component(dir ${header} DIRECTORY)
+  install(FILES include/rgbdvo/${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rgbdvo/${dir})
+endforeach()
 
 # find_package(rgbdvo): rgbdvo::rgbdvo (and rgbdvo::kinect).
 set(RGBDVO_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/rgbdvo)

@@ -3,6 +3,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "rgbdvo/features/sift/sift.hpp"
+
 namespace rgbdvo {
 
 FeatureOptions FeatureOptions::Lowe() {
@@ -14,9 +16,6 @@ FeatureOptions FeatureOptions::Lowe() {
 }
 
 void FeatureOptions::Check() const {
-  if (implementation != "rgbdvo" && implementation != "opencv")
-    throw std::invalid_argument("FeatureOptions.implementation must be rgbdvo or opencv, not '" +
-                                implementation + "'");
   if (max_features < 0)
     throw std::invalid_argument("FeatureOptions.max_features must be >= 0 (0 = all)");
   if (octave_layers < 1) throw std::invalid_argument("FeatureOptions.octave_layers must be >= 1");
@@ -27,25 +26,32 @@ void FeatureOptions::Check() const {
   if (!(sigma > 0)) throw std::invalid_argument("FeatureOptions.sigma must be > 0");
 }
 
-SiftOptions FeatureOptions::ToSiftOptions() const {
+namespace {
+
+// The options of rgbdvo's own SIFT (implementation kRgbdvo).
+SiftOptions ToSiftOptions(const FeatureOptions& o) {
   SiftOptions s;
-  s.scale_space.octave_layers = octave_layers;
-  s.scale_space.sigma = sigma;
-  s.scale_space.upsample = upsample_first_octave;
-  s.contrast_threshold = contrast_threshold;
-  s.edge_threshold = edge_threshold;
-  s.max_features = max_features;
+  s.scale_space.octave_layers = o.octave_layers;
+  s.scale_space.sigma = o.sigma;
+  s.scale_space.upsample = o.upsample_first_octave;
+  s.contrast_threshold = o.contrast_threshold;
+  s.edge_threshold = o.edge_threshold;
+  s.max_features = o.max_features;
   return s;
 }
 
+}  // namespace
+
 SiftExtractor::SiftExtractor(const FeatureOptions& o) : options_(o) {
   o.Check();
-  if (o.implementation == "opencv")
+  if (o.implementation == SiftImplementation::kOpenCv)
     opencv_ = cv::SIFT::create(o.max_features, o.octave_layers, o.contrast_threshold,
                                o.edge_threshold, o.sigma, CV_8U);
   else
-    o.ToSiftOptions().Check();
+    ToSiftOptions(o).Check();
 }
+
+SiftExtractor::~SiftExtractor() = default;
 
 Features SiftExtractor::Extract(const cv::Mat& image) const {
   if (image.empty()) throw std::invalid_argument("SIFT: empty image");
@@ -64,7 +70,7 @@ Features SiftExtractor::Extract(const cv::Mat& image) const {
         pool_.pop_back();
       }
     }
-    if (!sift) sift = std::make_unique<Sift>(options_.ToSiftOptions());
+    if (!sift) sift = std::make_unique<Sift>(ToSiftOptions(options_));
     sift->DetectAndDescribe(gray, &f.keypoints, &f.descriptors);
     std::lock_guard<std::mutex> lock(mutex_);
     pool_.push_back(std::move(sift));

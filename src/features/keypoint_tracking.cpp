@@ -11,21 +11,6 @@
 
 namespace rgbdvo {
 
-void TrackOptions::Check() const {
-  if (window_px < 3) throw std::invalid_argument("TrackOptions.window_px must be >= 3");
-  if (levels < 0) throw std::invalid_argument("TrackOptions.levels must be >= 0");
-  if (!(max_back_error_px >= 0))
-    throw std::invalid_argument("TrackOptions.max_back_error_px must be >= 0 (0 = not checked)");
-  if (max_points < 1) throw std::invalid_argument("TrackOptions.max_points must be >= 1");
-  if (!(warp_max_shift_px > 0))
-    throw std::invalid_argument("TrackOptions.warp_max_shift_px must be > 0");
-  if (warp_window_px < 3) throw std::invalid_argument("TrackOptions.warp_window_px must be >= 3");
-  if (!(warp_min_px >= 0)) throw std::invalid_argument("TrackOptions.warp_min_px must be >= 0");
-  if (!(warp_settled_px > 0))
-    throw std::invalid_argument("TrackOptions.warp_settled_px must be > 0");
-  if (warp_iterations < 1) throw std::invalid_argument("TrackOptions.warp_iterations must be >= 1");
-}
-
 cv::Mat GreyImage(const cv::Mat& image) {
   if (image.empty()) throw std::invalid_argument("tracking: empty image");
   cv::Mat grey;
@@ -78,41 +63,15 @@ namespace {
 
 const cv::TermCriteria kStop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
 
-// The forward tracks (found, landed at forward[i]) checked: inside `to`, and with
-// max_back_error_px tracked back from there into `from` to within that of where they started.
-std::vector<std::optional<cv::Point2f>> Landings(const TrackOptions& options,
-                                                 const TrackingPyramid& from,
-                                                 const TrackingPyramid& to,
-                                                 const std::vector<cv::Point2f>& points,
+// The forward tracks (found, landed at forward[i]) that landed inside an image of `size`.
+std::vector<std::optional<cv::Point2f>> Landings(const cv::Size& size,
                                                  const std::vector<cv::Point2f>& forward,
                                                  const std::vector<uchar>& found) {
-  std::vector<std::optional<cv::Point2f>> tracked(points.size());
-  const cv::Size window(options.window_px, options.window_px);
-  std::vector<cv::Point2f> back = points;
-  std::vector<uchar> found_back;
-  // No error output: OpenCV would compute each track's mean residual over its window once more,
-  // and drop the tracks whose window ends more than its width outside the image (window_near,
-  // below: the forward tracks' own check is stricter).
-  const bool check_back = options.max_back_error_px > 0;
-  if (check_back)
-    cv::calcOpticalFlowPyrLK(to, from, forward, back, found_back, cv::noArray(), window,
-                             options.levels, kStop, cv::OPTFLOW_USE_INITIAL_FLOW);
-  const cv::Size size = to.front().size();
-  const float half = static_cast<float>(options.window_px - 1) * 0.5f;
-  const auto window_near = [&](const cv::Point2f& p, cv::Size image) {
-    const int x = cvFloor(p.x - half), y = cvFloor(p.y - half);
-    return x >= -options.window_px && x < image.width && y >= -options.window_px &&
-           y < image.height;
-  };
-  const double max_back_sq = options.max_back_error_px * options.max_back_error_px;
-  for (size_t i = 0; i < points.size(); ++i) {
+  std::vector<std::optional<cv::Point2f>> tracked(forward.size());
+  for (size_t i = 0; i < forward.size(); ++i) {
     const cv::Point2f& p = forward[i];
-    if (!found[i] ||
-        (check_back && (!found_back[i] || !window_near(back[i], from.front().size()))) ||
-        !(p.x >= 0 && p.y >= 0 && p.x <= size.width - 1 && p.y <= size.height - 1))
-      continue;
-    const cv::Point2f d = back[i] - points[i];
-    if (!check_back || d.x * d.x + d.y * d.y <= max_back_sq) tracked[i] = p;
+    if (found[i] && p.x >= 0 && p.y >= 0 && p.x <= size.width - 1 && p.y <= size.height - 1)
+      tracked[i] = p;
   }
   return tracked;
 }
@@ -136,7 +95,7 @@ std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
   std::vector<cv::Point2f> forward = guess;
   std::vector<uchar> found;
   TrackLkWindows(from, to, kStop.maxCount, kStop.epsilon, &forward, &found);
-  return Landings(options, from.from, to, from.points, forward, found);
+  return Landings(to.front().size(), forward, found);
 }
 
 std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
@@ -153,7 +112,7 @@ std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,
   cv::calcOpticalFlowPyrLK(from, to, points, forward, found, cv::noArray(),
                            cv::Size(options.window_px, options.window_px), options.levels, kStop,
                            cv::OPTFLOW_USE_INITIAL_FLOW);
-  return Landings(options, from, to, points, forward, found);
+  return Landings(to.front().size(), forward, found);
 }
 
 namespace {

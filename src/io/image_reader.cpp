@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "rgbdvo/io/opencv_codecs.hpp"
+#include "rgbdvo/io/png_decoder.hpp"
 #include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {

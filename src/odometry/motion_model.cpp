@@ -13,7 +13,7 @@ MotionModelSetup SetUpMotionModel(const OdometryOptions& options, const Calibrat
                                   const Frame& first) {
   MotionModelSetup model;
   std::ostringstream brief;
-  if (options.motion != "planar") {
+  if (!options.motion.planar()) {
     brief << "6-DOF";
     if (options.gravity_correction)
       brief << ", roll and pitch pulled toward the accelerometer's gravity (time constant "
@@ -22,12 +22,13 @@ MotionModelSetup SetUpMotionModel(const OdometryOptions& options, const Calibrat
     return model;
   }
   brief << std::fixed << std::setprecision(1) << "planar (x, z and yaw about the floor's normal)";
-  if (options.floor == "given") {
+  const MotionOptions& m = options.motion;
+  if (m.floor == FloorSource::kGiven) {
     model.level_from_cam =
-        LevelFromFloorNormal(FloorNormalFromMount(options.mount_pitch_deg, options.mount_roll_deg));
-    brief << ", mount given: pitch " << options.mount_pitch_deg << " deg, roll "
-          << options.mount_roll_deg << " deg";
-  } else if (options.floor == "accelerometer") {
+        LevelFromFloorNormal(FloorNormalFromMount(m.mount_pitch_deg, m.mount_roll_deg));
+    brief << ", mount given: pitch " << m.mount_pitch_deg << " deg, roll " << m.mount_roll_deg
+          << " deg";
+  } else if (m.floor == FloorSource::kAccelerometer) {
     if (!first.gravity_in_cam)
       throw std::runtime_error("--motion planar --floor accelerometer: frame " +
                                std::to_string(first.index) +

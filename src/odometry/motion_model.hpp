@@ -17,7 +17,7 @@ struct MotionModelSetup {
   std::string brief;  // one line: "6-DOF", or "planar" with the floor's normal and its source
 };
 
-// The model options.motion names, with the planar model's floor found as options.floor says:
+// The model options.motion names, with the planar model's floor found as motion.floor says:
 // in `first`'s depth image, from its accelerometer reading, or from the given mount. Throws
 // std::runtime_error, naming the frame and what to do, when the floor is not found.
 MotionModelSetup SetUpMotionModel(const OdometryOptions& options, const Calibration& calib,

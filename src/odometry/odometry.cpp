@@ -27,47 +27,42 @@ void OdometryOptions::Check() const {
     throw std::invalid_argument("OdometryOptions.depth_term_step must be >= 0");
   if (!(depth_term_translation_std_m >= 0))
     throw std::invalid_argument("OdometryOptions.depth_term_translation_std_m must be >= 0");
-  if (motion != "6dof" && motion != "planar")
-    throw std::invalid_argument("OdometryOptions.motion must be 6dof or planar, not '" + motion +
-                                "'");
-  if (floor != "depth" && floor != "accelerometer" && floor != "given")
-    throw std::invalid_argument(
-        "OdometryOptions.floor must be depth, accelerometer or given, not '" + floor + "'");
   gravity.Check();
   tracking.Check();
   if (!(track_stale_noise_ratio == 0 || track_stale_noise_ratio >= 1))
     throw std::invalid_argument(
         "OdometryOptions.track_stale_noise_ratio must be >= 1 (or 0 = no such keyframes)");
-  if (gravity_correction && motion == "planar")
+  if (gravity_correction && motion.planar())
     throw std::invalid_argument(
         "OdometryOptions.gravity_correction corrects roll and pitch, which motion planar holds "
         "fixed: use one or the other");
-  if (!(std::abs(mount_pitch_deg) < 90 && std::abs(mount_roll_deg) < 90))
+  if (!(std::abs(motion.mount_pitch_deg) < 90 && std::abs(motion.mount_roll_deg) < 90))
     throw std::invalid_argument(
-        "OdometryOptions.mount_pitch_deg and mount_roll_deg must be within (-90, 90)");
+        "OdometryOptions.motion.mount_pitch_deg and mount_roll_deg must be within (-90, 90)");
 }
 
 OdometryOptions PresetOptions(const std::string& name) {
   OdometryOptions o;
   if (name == "default") return o;
   if (name == "paper") {
-    o.features = FeatureOptions::Lowe();   // Lowe's SIFT, as cv::SIFT's defaults
-    o.features.implementation = "opencv";  // a reference SIFT (the paper names none)
-    o.matching.mutual = false;             // the paper names no matching rule; a plain ratio test
-    o.refine_enabled = false;              // SVD on the inliers only (eq. 5-10)
-    o.keyframe_inlier_ratio = 0;           // successive frames
-    o.fuse_keyframe_pose = false;          // one estimate per frame
-    o.ransac.confidence = 0;               // always 200 trials
-    o.undistort = false;                   // "a perfect pinhole model was used"
-    o.lifting.max_depth_jump_ratio = 0;    // depth at the nearest pixel
-    o.guided_radius_px = 0;                // brute-force matching
-    o.guided_rematch = false;              // (no prior to correct)
-    o.predict_failed_frames = false;       // a rejected frame keeps the last pose
-    o.depth_fallback = false;              // features only
-    o.depth_keyframe = false;              // (with the fallback) frame to frame
-    o.compensate_depth_delay = false;      // depth at the keypoint's own pixel
-    o.depth_term_step = 0;                 // feature residuals only
-    o.track_between_keyframes = false;     // SIFT and matching on every frame
+    o.features = FeatureOptions::Lowe();  // Lowe's SIFT, as cv::SIFT's defaults
+    o.features.implementation =
+        SiftImplementation::kOpenCv;     // a reference SIFT (the paper names none)
+    o.matching.mutual = false;           // the paper names no matching rule; a plain ratio test
+    o.refine_enabled = false;            // SVD on the inliers only (eq. 5-10)
+    o.keyframe_inlier_ratio = 0;         // successive frames
+    o.fuse_keyframe_pose = false;        // one estimate per frame
+    o.ransac.confidence = 0;             // always 200 trials
+    o.undistort = false;                 // "a perfect pinhole model was used"
+    o.lifting.max_depth_jump_ratio = 0;  // depth at the nearest pixel
+    o.guided_radius_px = 0;              // brute-force matching
+    o.guided_rematch = false;            // (no prior to correct)
+    o.predict_failed_frames = false;     // a rejected frame keeps the last pose
+    o.depth_fallback = false;            // features only
+    o.depth_keyframe = false;            // (with the fallback) frame to frame
+    o.compensate_depth_delay = false;    // depth at the keypoint's own pixel
+    o.depth_term_step = 0;               // feature residuals only
+    o.track_between_keyframes = false;   // SIFT and matching on every frame
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");

@@ -15,6 +15,14 @@ namespace {
 
 using O = OdometryOptions;
 
+// The enum's name for `value`.
+template <typename E>
+const char* NameOf(E value) {
+  for (const auto& [e, name] : EnumNames<E>())
+    if (e == value) return name;
+  return "?";
+}
+
 // The list itself. A new parameter: a field in its options struct, then one line here.
 const std::vector<OdometryParameter> kParameters = {
     {"features.implementation", "sift",
@@ -38,10 +46,10 @@ const std::vector<OdometryParameter> kParameters = {
      [](O& o) -> ParameterRef { return &o.matching.ratio; }},
     {"matching.mutual", "mutual", "require mutual nearest neighbours (not in --preset paper)",
      [](O& o) -> ParameterRef { return &o.matching.mutual; }},
-    {"matching.guided_radius_px", "guided-radius",
+    {"guided_radius_px", "guided-radius",
      "guided matching: search radius around the motion prior's prediction, px (0 = brute force)",
      [](O& o) -> ParameterRef { return &o.guided_radius_px; }},
-    {"matching.guided_rematch", "guided-rematch",
+    {"guided_rematch", "guided-rematch",
      "guided matching: match again around the estimate when its inliers reach the outer half of "
      "the radius (the prior was off); brute force decides a weak estimate it does not reproduce",
      [](O& o) -> ParameterRef { return &o.guided_rematch; }},
@@ -59,18 +67,18 @@ const std::vector<OdometryParameter> kParameters = {
      [](O& o) -> ParameterRef { return &o.ransac.confidence; }},
     {"motion.model", "motion",
      "6dof (any motion) or planar (a camera on a robot driving on a flat floor: x, z and yaw)",
-     [](O& o) -> ParameterRef { return &o.motion; }},
+     [](O& o) -> ParameterRef { return &o.motion.model; }},
     {"motion.floor", "floor",
      "planar: the floor's normal from the first frame's depth (depth), its accelerometer reading "
      "(accelerometer) or --mount-pitch and --mount-roll (given)",
-     [](O& o) -> ParameterRef { return &o.floor; }},
+     [](O& o) -> ParameterRef { return &o.motion.floor; }},
     {"motion.mount_pitch_deg", "mount-pitch",
      "planar, --floor given: the camera's pitch against the floor, deg (+: looks down)",
-     [](O& o) -> ParameterRef { return &o.mount_pitch_deg; }},
+     [](O& o) -> ParameterRef { return &o.motion.mount_pitch_deg; }},
     {"motion.mount_roll_deg", "mount-roll",
      "planar, --floor given: the camera's roll against the floor, deg",
-     [](O& o) -> ParameterRef { return &o.mount_roll_deg; }},
-    {"gravity.enabled", "gravity",
+     [](O& o) -> ParameterRef { return &o.motion.mount_roll_deg; }},
+    {"gravity_correction", "gravity",
      "correct roll and pitch drift toward the accelerometer's gravity (TUM accelerometer.txt, "
      "fakenect a- entries, a live Kinect; not with --motion planar)",
      [](O& o) -> ParameterRef { return &o.gravity_correction; }},
@@ -88,7 +96,7 @@ const std::vector<OdometryParameter> kParameters = {
     {"verify.max_rotation_deg", "max-rotation",
      "reject a larger rotation per frame, deg (paper: 60)",
      [](O& o) -> ParameterRef { return &o.verify.max_rotation_deg; }},
-    {"refine.enabled", "refine",
+    {"refine_enabled", "refine",
      "refine the motion on reprojection and depth residuals (--no-refine: the paper's SVD only)",
      [](O& o) -> ParameterRef { return &o.refine_enabled; }},
     {"refine.pixel_sigma", "pixel-sigma", "refinement: keypoint noise, px",
@@ -112,15 +120,10 @@ const std::vector<OdometryParameter> kParameters = {
      "a new keyframe's pose also from the last frame, the two averaged by their inliers "
      "(--no-keyframe-fusion: from the old keyframe alone)",
      [](O& o) -> ParameterRef { return &o.fuse_keyframe_pose; }},
-    {"tracking.enabled", "track",
+    {"track_between_keyframes", "track",
      "between keyframes, track the keyframe's keypoints (Lucas-Kanade) instead of running SIFT "
      "and matching on every frame (--no-track: SIFT on every frame, as the paper)",
      [](O& o) -> ParameterRef { return &o.track_between_keyframes; }},
-    {"tracking.fusion", "track-fusion",
-     "tracking: a new keyframe's second pose (keyframe fusion) from its keypoints tracked back "
-     "into the tracked frame before it instead of SIFT run there and matched (less CPU, a "
-     "little less accurate; off)",
-     [](O& o) -> ParameterRef { return &o.track_fusion; }},
     {"tracking.window_px", "track-window", "tracking: Lucas-Kanade window side, px",
      [](O& o) -> ParameterRef { return &o.tracking.window_px; }},
     {"tracking.warp", "track-warp",
@@ -140,10 +143,7 @@ const std::vector<OdometryParameter> kParameters = {
      [](O& o) -> ParameterRef { return &o.tracking.levels; }},
     {"tracking.max_points", "track-points", "tracking: keyframe keypoints tracked, at most",
      [](O& o) -> ParameterRef { return &o.tracking.max_points; }},
-    {"tracking.max_back_error_px", "track-back-error",
-     "tracking: keep a track when tracking it back lands within this, px (0 = not tracked back)",
-     [](O& o) -> ParameterRef { return &o.tracking.max_back_error_px; }},
-    {"tracking.stale_noise_ratio", "track-stale-noise",
+    {"track_stale_noise_ratio", "track-stale-noise",
      "tracking: new keyframe when the tracks' pixel noise exceeds this times the least on the "
      "keyframe's tracked frames so far (0 = not)",
      [](O& o) -> ParameterRef { return &o.track_stale_noise_ratio; }},
@@ -188,6 +188,29 @@ std::string Lower(std::string s) {
 
 }  // namespace
 
+template <>
+const std::vector<std::pair<SiftImplementation, const char*>>& EnumNames<SiftImplementation>() {
+  static const std::vector<std::pair<SiftImplementation, const char*>> names = {
+      {SiftImplementation::kRgbdvo, "rgbdvo"}, {SiftImplementation::kOpenCv, "opencv"}};
+  return names;
+}
+
+template <>
+const std::vector<std::pair<MotionModelKind, const char*>>& EnumNames<MotionModelKind>() {
+  static const std::vector<std::pair<MotionModelKind, const char*>> names = {
+      {MotionModelKind::kSixDof, "6dof"}, {MotionModelKind::kPlanar, "planar"}};
+  return names;
+}
+
+template <>
+const std::vector<std::pair<FloorSource, const char*>>& EnumNames<FloorSource>() {
+  static const std::vector<std::pair<FloorSource, const char*>> names = {
+      {FloorSource::kDepth, "depth"},
+      {FloorSource::kAccelerometer, "accelerometer"},
+      {FloorSource::kGiven, "given"}};
+  return names;
+}
+
 bool OdometryParameter::IsBool() const {
   O o;
   return std::holds_alternative<bool*>(field(o));
@@ -200,8 +223,11 @@ std::string OdometryParameter::Get(const OdometryOptions& options) const {
   s.precision(15);
   std::visit(
       [&](auto* value) {
-        if constexpr (std::is_same_v<decltype(value), bool*>)
+        using T = std::remove_pointer_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, bool>)
           s << (*value ? "true" : "false");
+        else if constexpr (std::is_enum_v<T>)
+          s << NameOf(*value);
         else
           s << *value;
       },
@@ -217,9 +243,16 @@ void OdometryParameter::Set(const std::string& text, OdometryOptions* options) c
   std::visit(
       [&](auto* target) {
         using T = std::remove_pointer_t<decltype(target)>;
-        if constexpr (std::is_same_v<T, std::string>) {
-          if (value.empty()) throw bad("a name");
-          *target = value;
+        if constexpr (std::is_enum_v<T>) {
+          std::string names;
+          for (const auto& [e, name] : EnumNames<T>()) {
+            if (value == name) {
+              *target = e;
+              return;
+            }
+            names += std::string(names.empty() ? "" : ", ") + name;
+          }
+          throw bad("one of " + names);
         } else if constexpr (std::is_same_v<T, bool>) {
           const std::string v = Lower(value);
           if (v == "true" || v == "1" || v == "yes" || v == "on")
@@ -256,6 +289,56 @@ const OdometryParameter* FindParameter(const std::string& key) {
   return nullptr;
 }
 
+namespace {
+
+// Parameters that were removed, with the value they always had by default: a configuration file
+// written before (--dump-config) still loads where it kept that value.
+struct RetiredParameter {
+  const char* key;
+  const char* default_value;
+  const char* why;
+};
+const RetiredParameter kRetired[] = {
+    {"tracking.fusion", "false",
+     "the keyframe fusion's tracks back were less accurate than SIFT there "
+     "(docs/decisions/0039-track-fusion.md)"},
+    {"tracking.max_back_error_px", "0",
+     "the forward-backward check dropped right tracks in motion blur "
+     "(docs/decisions/0032-track-option.md)"},
+};
+
+// Keys renamed to their field's path in OdometryOptions, still read under the old name.
+const std::pair<const char*, const char*> kRenamed[] = {
+    {"matching.guided_radius_px", "guided_radius_px"},
+    {"matching.guided_rematch", "guided_rematch"},
+    {"gravity.enabled", "gravity_correction"},
+    {"refine.enabled", "refine_enabled"},
+    {"tracking.enabled", "track_between_keyframes"},
+    {"tracking.stale_noise_ratio", "track_stale_noise_ratio"},
+};
+
+// The key under its current name.
+std::string CurrentKey(const std::string& key) {
+  for (const auto& [old_key, new_key] : kRenamed)
+    if (key == old_key) return new_key;
+  return key;
+}
+
+// True for a retired key at its old default (the line is skipped); throws naming `where` for a
+// retired key set to anything else.
+bool RetiredAtItsDefault(const std::string& key, const std::string& value,
+                         const std::string& where) {
+  for (const RetiredParameter& r : kRetired) {
+    if (key != r.key) continue;
+    if (value == r.default_value) return true;
+    throw std::runtime_error(where + ": parameter '" + key + "' was removed (" + r.why +
+                             "); delete the line");
+  }
+  return false;
+}
+
+}  // namespace
+
 void ApplyConfig(std::istream& in, const std::string& name, OdometryOptions* options) {
   int number = 0;
   for (std::string line; std::getline(in, line);) {
@@ -266,7 +349,8 @@ void ApplyConfig(std::istream& in, const std::string& name, OdometryOptions* opt
     const size_t eq = content.find('=');
     if (eq == std::string::npos)
       throw std::runtime_error(where + ": expected 'key = value', got '" + content + "'");
-    const std::string key = Trim(content.substr(0, eq));
+    const std::string key = CurrentKey(Trim(content.substr(0, eq)));
+    if (RetiredAtItsDefault(key, Trim(content.substr(eq + 1)), where)) continue;
     const OdometryParameter* p = FindParameter(key);
     if (!p)
       throw std::runtime_error(where + ": unknown parameter '" + key +

@@ -210,13 +210,11 @@ FrameResult Tracker::Accept(const Frame& frame, Current* c) {
   const bool tracked = c->measured == Measured::kTracks;
   const bool recovered = c->measured == Measured::kLastFrameMatches;
   const bool new_keyframe = DecideKeyframe(c);
-  // The fusion measures a new keyframe again against the last frame: where that frame was
-  // tracked, by tracking the keyframe's keypoints back into it (track_fusion), else by SIFT on
-  // both, side by side with a second thread.
+  // The fusion measures a new keyframe again against the last frame, by SIFT on both (side by
+  // side with a second thread).
   const bool fuse = new_keyframe && options_.fuse_keyframe_pose && !recovered &&
                     last_.frame != key_.frame && last_.pose_from_features;
-  const bool fuse_by_tracks = fuse && options_.track_fusion && !last_.has_features;
-  if (fuse && !fuse_by_tracks) measurer_.EnsureFeatures(&cur, &r, &last_);
+  if (fuse) measurer_.EnsureFeatures(&cur, &r, &last_);
   if (new_keyframe) EnsureCurrentFeatures(c);
   if (new_keyframe && tracked) {
     // A keyframe's pose is in every pose after it, and the tracks drift with their windows: it
@@ -235,7 +233,7 @@ FrameResult Tracker::Accept(const Frame& frame, Current* c) {
     cur.world_from_cam_6dof = key_.world_from_cam_6dof * *c->motion.unconstrained;
     r.world_from_cam_6dof = cur.world_from_cam_6dof;
   }
-  if (fuse) FuseWithLastFrame(fuse_by_tracks, c);
+  if (fuse) FuseWithLastFrame(c);
   // The velocity is what one estimate measured: after depth-aligned frames, this estimate's own
   // from the keyframe (the last frame's pose would add the error this estimate corrects).
   Advance(std::move(cur), new_keyframe, last_.pose_from_features ? last_ : key_);
@@ -279,33 +277,16 @@ MotionEstimate Tracker::MeasureAside(const Reference& ref, Current* c, FrameResu
   return estimate;
 }
 
-void Tracker::FuseWithLastFrame(bool by_tracks, Current* c) {
+void Tracker::FuseWithLastFrame(Current* c) {
   // A new keyframe's error is in every pose after it: measured again against the last frame,
   // the two verified poses averaged, each weighted by its inliers (variance ~ 1 / inliers).
-  FrameResult& r = c->r;
-  Reference& cur = c->ref;
   FrameResult again;
   std::string reason;
-  std::optional<Rigid3d> last_from_cur;
-  if (by_tracks) {
-    // The keyframe's lifted keypoints tracked back into the last frame from where the prior
-    // puts them; this also gives the keyframe's pyramid the derivatives its next frames need.
-    std::vector<int> lifted;
-    for (size_t i = 0; i < cur.points.size(); ++i)
-      if (cur.points[i]) lifted.push_back(static_cast<int>(i));
-    again = r;
-    const MotionEstimate back = measurer_.Track(
-        &cur, lifted, last_, last_.world_from_cam.inverse() * c->world_from_pred, &again);
-    r.times = again.times;
-    reason = CheckMotion(options_.verify, back);
-    if (reason.empty()) last_from_cur = back.prev_from_cur.inverse();
-  } else {
-    const MotionEstimate from_last = MeasureAside(last_, c, &again, &reason);
-    if (reason.empty()) last_from_cur = from_last.prev_from_cur;
-  }
-  if (!last_from_cur) return;
-  const double w = static_cast<double>(r.inliers) / (r.inliers + again.inliers);
-  cur.world_from_cam = WeightedMean(cur.world_from_cam, last_.world_from_cam * *last_from_cur, w);
+  const MotionEstimate from_last = MeasureAside(last_, c, &again, &reason);
+  if (!reason.empty()) return;
+  const double w = static_cast<double>(c->r.inliers) / (c->r.inliers + again.inliers);
+  c->ref.world_from_cam =
+      WeightedMean(c->ref.world_from_cam, last_.world_from_cam * from_last.prev_from_cur, w);
 }
 
 // ---- align depth --------------------------------------------------------------------------

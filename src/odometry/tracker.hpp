@@ -76,7 +76,7 @@ class Tracker {
   bool DecideKeyframe(Current* c);
   MotionEstimate MeasureAside(const Reference& ref, Current* c, FrameResult* aside,
                               std::string* reason);
-  void FuseWithLastFrame(bool by_tracks, Current* c);
+  void FuseWithLastFrame(Current* c);
 
   // Makes cur (now at its world_from_cam) the last estimated frame, and the keyframe with
   // new_keyframe. The velocity is measured from `measured_from` (its pose and time) to cur.

@@ -155,24 +155,6 @@ TEST_CASE(
   CHECK(*shifted[0] == cv::Point2f(102.8f, 98.1f));
 }
 
-TEST_CASE("A point whose patch is not in the other image is dropped by the back-tracking check") {
-  TrackOptions options;
-  options.max_back_error_px = 1;
-  const cv::Mat a = Texture(240, 320, 7);
-  cv::Mat b = Shifted(a, 3, 2);
-  // Another texture pasted over the middle: what was there is gone.
-  Texture(80, 80, 99).copyTo(b(cv::Rect(120, 80, 80, 80)));
-  const std::vector<cv::Point2f> points = {{160, 120}, {60, 60}};
-  const std::vector<cv::Point2f> guess = {{163, 122}, {63, 62}};
-  const std::vector<std::optional<cv::Point2f>> tracked =
-      TrackPoints(options, MakeTrackingPyramid(options, a, true),
-                  MakeTrackingPyramid(options, b, false), points, guess);
-  CHECK(!tracked[0]);
-  REQUIRE(tracked[1]);
-  CHECK(std::abs(tracked[1]->x - 63) < 0.1);
-  CHECK(std::abs(tracked[1]->y - 62) < 0.1);
-}
-
 TEST_CASE("Nothing to track gives nothing; an empty image is refused") {
   const TrackOptions options;
   const TrackingPyramid p = MakeTrackingPyramid(options, Texture(64, 64, 1), true);
@@ -181,7 +163,7 @@ TEST_CASE("Nothing to track gives nothing; an empty image is refused") {
   CHECK_THROWS_AS(MakeTrackingPyramid(options, cv::Mat(8, 8, CV_8UC3), false),
                   std::invalid_argument);
   TrackOptions bad;
-  bad.max_back_error_px = -1;
+  bad.max_points = 0;
   CHECK_THROWS_AS(bad.Check(), std::invalid_argument);
 }
 

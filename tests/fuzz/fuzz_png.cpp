@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fuzz_input.hpp"
-#include "rgbdvo/io/image_reader.hpp"
+#include "rgbdvo/io/png_decoder.hpp"
 
 namespace {
 

@@ -39,6 +39,17 @@ cmake --build "$tmp/example" >/dev/null
 # The same odometry as the program (same defaults, same seed).
 diff <(grep -v '^#' "$tmp/run.tum") "$tmp/example.tum" >/dev/null || fail "example and rgbdvo run disagree"
 
+# Every installed header compiles against the installed tree alone (no private header left out
+# from under a public one), and the private ones are not there.
+find "$prefix/include/rgbdvo" -name '*.hpp' | sed "s|^$prefix/include/|#include <|; s|\$|>|" >"$tmp/all_headers.cpp"
+[ "$(wc -l <"$tmp/all_headers.cpp")" -ge 40 ] || fail "only $(wc -l <"$tmp/all_headers.cpp") headers installed"
+# shellcheck disable=SC2046
+g++ -std=c++17 -fsyntax-only -I"$prefix/include" $(pkg-config --cflags opencv4 eigen3) "$tmp/all_headers.cpp" ||
+  fail "an installed header does not compile against the installed tree"
+for private in util/simd.hpp features/sift/sift.hpp features/lucas_kanade.hpp io/png_decoder.hpp \
+  util/huge_page_buffer.hpp; do
+  [ ! -e "$prefix/include/rgbdvo/$private" ] || fail "the private header $private is installed"
+done
 # ... and through pkg-config.
 PKG_CONFIG_PATH=$prefix/lib/pkgconfig pkg-config --exists rgbdvo || fail "pkg-config finds no rgbdvo"
 # shellcheck disable=SC2046

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
+#include "rgbdvo/io/png_decoder.hpp"
 #include "test_support.hpp"
 
 using namespace rgbdvo;

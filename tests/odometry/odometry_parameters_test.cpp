@@ -57,7 +57,13 @@ TEST_CASE("A parameter set from text reads back as the same text, for every type
   FindParameter("matching.mutual")->Set("TRUE", &o);
   CHECK(o.matching.mutual);
   FindParameter("features.implementation")->Set("opencv", &o);
-  CHECK(o.features.implementation == "opencv");
+  CHECK(o.features.implementation == SiftImplementation::kOpenCv);
+  CHECK(FindParameter("features.implementation")->Get(o) == "opencv");
+  FindParameter("motion.model")->Set("planar", &o);
+  FindParameter("motion.floor")->Set("accelerometer", &o);
+  CHECK(o.motion.planar());
+  CHECK(o.motion.floor == FloorSource::kAccelerometer);
+  CHECK(o.NeedsAccelerometer());
   FindParameter("refine.depth_noise_coeff")->Set("0.001425", &o);
   CHECK(FindParameter("refine.depth_noise_coeff")->Get(o) == "0.001425");
   CHECK(FindParameter("matching.mutual")->Get(o) == "true");
@@ -73,6 +79,8 @@ TEST_CASE("A value of the wrong type is refused naming the parameter") {
   CHECK_THROWS_WITH(FindParameter("matching.mutual")->Set("maybe", &o),
                     Catch::Contains("true or false"));
   CHECK_THROWS(FindParameter("features.implementation")->Set("  ", &o));
+  CHECK_THROWS_WITH(FindParameter("motion.model")->Set("3dof", &o),
+                    Catch::Contains("motion.model") && Catch::Contains("one of 6dof, planar"));
   CHECK(o.ransac.max_trials == OdometryOptions{}.ransac.max_trials);  // unchanged
 }
 
@@ -96,6 +104,31 @@ TEST_CASE("A configuration file changes only the keys it names, in file order") 
   expected.ransac.max_trials = 60;
   expected.matching.mutual = false;
   CHECK(o.ToString() == expected.ToString());
+}
+
+TEST_CASE("Every key is its field's path; renamed keys of earlier files still load") {
+  // A key names the field it sets: set through the key, the field's value changes.
+  OdometryOptions o;
+  FindParameter("guided_radius_px")->Set("12", &o);
+  FindParameter("track_stale_noise_ratio")->Set("2", &o);
+  CHECK(o.guided_radius_px == 12);
+  CHECK(o.track_stale_noise_ratio == 2);
+  std::istringstream old(
+      "matching.guided_rematch = false\ntracking.enabled = false\nrefine.enabled = false\n");
+  ApplyConfig(old, "old.cfg", &o);
+  CHECK_FALSE(o.guided_rematch);
+  CHECK_FALSE(o.track_between_keyframes);
+  CHECK_FALSE(o.refine_enabled);
+}
+
+TEST_CASE("A removed parameter loads at its old default and is refused at any other value") {
+  OdometryOptions o;
+  std::istringstream old("tracking.fusion = false\ntracking.max_back_error_px = 0\nseed = 3\n");
+  ApplyConfig(old, "old.cfg", &o);
+  CHECK(o.seed == 3u);
+  std::istringstream set("seed = 1\ntracking.fusion = true\n");
+  CHECK_THROWS_WITH(ApplyConfig(set, "set.cfg", &o),
+                    Catch::Contains("set.cfg:2") && Catch::Contains("was removed"));
 }
 
 TEST_CASE("Configuration file errors name the file and line") {

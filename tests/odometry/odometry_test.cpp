@@ -744,7 +744,7 @@ TEST_CASE("Planar motion: the floor is found in the first frame and the path kep
   Rigid3d world_from_first;
   const std::vector<Rigid3d> path = RobotPath(25, &world_from_first);
   OdometryOptions options;
-  options.motion = "planar";
+  options.motion.model = MotionModelKind::kPlanar;
   Odometry odometry(options, CalibFor(cam));
   const Eigen::Vector3d normal_in_first =
       world_from_first.linear().transpose() * Eigen::Vector3d::UnitY();
@@ -771,16 +771,14 @@ TEST_CASE("Planar motion without a floor in view needs the mount given") {
   looking_up.linear() = Eigen::AngleAxisd(25 * M_PI / 180, Eigen::Vector3d::UnitX()).matrix();
   const Frame f = Render(scene, cam, looking_up, 0);
   OdometryOptions options;
-  options.motion = "planar";
+  options.motion.model = MotionModelKind::kPlanar;
   Odometry fitted(options, CalibFor(cam));
   CHECK_THROWS_WITH(fitted.Process(f), Catch::Contains("no floor in the first frame") &&
                                            Catch::Contains("--floor accelerometer"));
-  options.floor = "given";
+  options.motion.floor = FloorSource::kGiven;
   Odometry given(options, CalibFor(cam));
   CHECK(given.Process(f).status == FrameStatus::kFirst);
   CHECK_THAT(given.MotionModelBrief(), Catch::Contains("mount given: pitch 0.0 deg, roll 0.0"));
-  options.motion = "3dof";
-  CHECK_THROWS_WITH(options.Check(), Catch::Contains("motion must be 6dof or planar"));
 }
 
 TEST_CASE("Planar motion can take the floor's normal from the first frame's accelerometer") {
@@ -789,8 +787,8 @@ TEST_CASE("Planar motion can take the floor's normal from the first frame's acce
   Rigid3d world_from_first;
   const std::vector<Rigid3d> path = RobotPath(8, &world_from_first);
   OdometryOptions options;
-  options.motion = "planar";
-  options.floor = "accelerometer";
+  options.motion.model = MotionModelKind::kPlanar;
+  options.motion.floor = FloorSource::kAccelerometer;
   Odometry odometry(options, CalibFor(cam));
   Frame first = Render(scene, cam, world_from_first * path[0], 0);
   CHECK_THROWS_WITH(odometry.Process(first), Catch::Contains("has no accelerometer reading"));
@@ -960,49 +958,4 @@ TEST_CASE("Where the tracks fail and SIFT reaches the keyframe, the keyframe sta
   CHECK(without_tracking >= 2);
   CHECK(tracks_failing <= without_tracking + 2);
   CHECK(tracks_failing < static_cast<int>(path.size()) / 2);
-}
-
-TEST_CASE("A new keyframe's second pose is tracked back into the tracked frame before it") {
-  // With tracking, the frame before a new keyframe was tracked and has no SIFT features: with
-  // track_fusion the keyframe fusion tracks the new keyframe's keypoints back into it instead of
-  // running SIFT there, so SIFT runs once per keyframe, not twice. The fused poses differ
-  // from the old keyframe's estimate alone (no fusion) and stay as near the path.
-  const SyntheticScene scene;
-  const PinholeCamera cam;
-  const std::vector<Rigid3d> path = MakeSmoothPath(30, 0.02, 1.5);
-  struct Run {
-    std::vector<Rigid3d> poses;
-    int keyframes = 0, most_sift_runs = 0;
-  };
-  const auto run = [&](bool fuse, bool by_tracks) {
-    OdometryOptions options;
-    options.keyframe_inlier_ratio = 0.9;  // renewals happen within the 30 frames
-    options.track_between_keyframes = true;
-    options.fuse_keyframe_pose = fuse;
-    options.track_fusion = by_tracks;
-    Odometry odometry(options, CalibFor(cam));
-    Run out;
-    for (int i = 0; i < static_cast<int>(path.size()); ++i) {
-      const FrameResult r = odometry.Process(Render(scene, cam, path[i], i));
-      INFO("frame " << i << " " << r.StatusString() << " inliers " << r.inliers);
-      REQUIRE((r.status == FrameStatus::kAccepted || r.status == FrameStatus::kFirst));
-      CHECK(TranslationError(r.world_from_cam, path[i]) < 0.02);
-      out.poses.push_back(r.world_from_cam);
-      if (r.keyframe && r.status == FrameStatus::kAccepted) ++out.keyframes;
-      out.most_sift_runs = std::max(out.most_sift_runs, r.sift_runs);
-    }
-    return out;
-  };
-  const Run tracked_back = run(true, true), sift = run(true, false), single = run(false, true);
-  INFO("keyframes " << tracked_back.keyframes << " / " << sift.keyframes);
-  CHECK(tracked_back.keyframes >= 2);
-  CHECK(tracked_back.most_sift_runs == 1);
-  CHECK(sift.most_sift_runs == 2);  // the keyframe's and the frame before's
-  CHECK(single.most_sift_runs == 1);
-  int differ = 0;
-  for (size_t i = 0; i < path.size(); ++i)
-    if (!tracked_back.poses[i].isApprox(single.poses[i], 1e-12)) ++differ;
-  CHECK(differ > 0);
-  const bool track_fusion = OdometryOptions().track_fusion;
-  CHECK(!track_fusion);
 }

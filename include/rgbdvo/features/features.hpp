@@ -8,14 +8,16 @@
 #include <string>
 #include <vector>
 
-#include "rgbdvo/features/sift/sift.hpp"
-
 namespace rgbdvo {
 
+class Sift;  // features/sift/sift.hpp, private to the library
+
+// kRgbdvo: rgbdvo's own SIFT (features/sift: OpenCV's detector and descriptor, about twice as
+// fast); kOpenCv: cv::SIFT.
+enum class SiftImplementation { kRgbdvo, kOpenCv };
+
 struct FeatureOptions {
-  // "rgbdvo": rgbdvo's own SIFT (sift.hpp: OpenCV's detector and descriptor, about twice as
-  // fast); "opencv": cv::SIFT.
-  std::string implementation = "rgbdvo";
+  SiftImplementation implementation = SiftImplementation::kRgbdvo;
   int max_features = 0;   // keep the N strongest, 0 = all (paper: all, 200-1500)
   int octave_layers = 3;  // SIFT scales per octave (Lowe: 3)
   // The scale space starts at the image's own resolution (upsample_first_octave false) with a
@@ -37,7 +39,6 @@ struct FeatureOptions {
   // Lowe's parameters: the 2x-upsampled first octave, base blur 1.6, contrast 0.04.
   static FeatureOptions Lowe();
   void Check() const;
-  SiftOptions ToSiftOptions() const;  // for implementation "rgbdvo"
 };
 
 struct Features {
@@ -53,13 +54,16 @@ struct Features {
 class SiftExtractor {
  public:
   explicit SiftExtractor(const FeatureOptions& options);
+  ~SiftExtractor();
+  SiftExtractor(const SiftExtractor&) = delete;
+  SiftExtractor& operator=(const SiftExtractor&) = delete;
   // `image` is CV_8UC3 (BGR) or CV_8UC1.
   Features Extract(const cv::Mat& image) const;
   const FeatureOptions& options() const { return options_; }
 
  private:
   FeatureOptions options_;
-  cv::Ptr<cv::SIFT> opencv_;  // implementation "opencv"
+  cv::Ptr<cv::SIFT> opencv_;  // implementation kOpenCv
   mutable std::mutex mutex_;  // guards pool_
   mutable std::vector<std::unique_ptr<Sift>> pool_;
 };

@@ -9,43 +9,9 @@
 #include <vector>
 
 #include "rgbdvo/features/lucas_kanade.hpp"
+#include "rgbdvo/features/track_options.hpp"
 
 namespace rgbdvo {
-
-struct TrackOptions {
-  // The Lucas-Kanade window's side, pixels. A SIFT keypoint is the centre of a blob of about
-  // its scale (2-3 px at the finest); 9, 11 and 13 px track about equally well
-  // (docs/decisions/0032-track-option.md), the cost grows with the area.
-  int window_px = 9;
-  // Pyramid levels above the image: each halves the motion the window has to catch (3: a
-  // prediction off by up to about 8 window sides is still caught).
-  int levels = 3;
-  // > 0: a track is kept only when tracking it back from where it landed returns within this
-  // distance of where it started, pixels (twice the work). 0: not checked; RANSAC and the
-  // refinement's inlier selection sort the tracks, and measured that is better: the check
-  // drops right tracks in motion blur (docs/decisions/0032-track-option.md).
-  double max_back_error_px = 0;
-  // At most this many of the keyframe's keypoints (with a 3D point) are tracked: the strongest of
-  // each cell of an 8 x 8 grid in turn, so that they cover the image as the matches do.
-  int max_points = 400;
-  // true: after the pyramid, each track is refined at the finest level with the keyframe's
-  // window warped as the predicted motion shows it (RefineWarped). OpenCV's window only shifts:
-  // as the view moves on from the keyframe, its content grows, shrinks and shears, and the track
-  // slides away from its keyframe as the keyframe ages (docs/decisions/0036-warped-window.md).
-  // false = OpenCV's shifted window alone.
-  bool warp = true;
-  // The refinement's iterations at most, and how far it may move a track, pixels: farther, it
-  // has left the place the pyramid found, and the pyramid's landing stands.
-  int warp_window_px = 9;
-  // Refined only where the warp moves a corner of the window at least this far from where a
-  // shift puts it, pixels (elsewhere the shifted window fits as well).
-  double warp_min_px = 0.1;
-  // Settled when a step moves the track less than warp_settled_px, within warp_iterations.
-  double warp_settled_px = 0.01;
-  int warp_iterations = 10;
-  double warp_max_shift_px = 2.0;
-  void Check() const;
-};
 
 // A CV_8UC1 copy of a BGR (as SIFT converts it) or grey image; throws std::invalid_argument on
 // an empty one.
@@ -66,8 +32,9 @@ std::vector<int> SelectSpread(const std::vector<cv::KeyPoint>& keypoints,
                               const std::vector<bool>& usable, cv::Size size, int max_points);
 
 // Each of `points` (pixels of `from`) tracked into `to`, starting from guess[i]: where it lies
-// in `to`, or nullopt when Lucas-Kanade lost it, it left the image, or (with
-// max_back_error_px) tracking it back from there lands farther than that from where it started.
+// in `to`, or nullopt when Lucas-Kanade lost it or it left the image. No forward-backward check:
+// RANSAC and the refinement's inlier selection sort the tracks, and the check drops right tracks
+// in motion blur (docs/decisions/0032-track-option.md).
 // Lucas-Kanade is OpenCV's (features/lucas_kanade.hpp: with the derivatives in `from`, the same
 // tracks from windows made here).
 std::vector<std::optional<cv::Point2f>> TrackPoints(const TrackOptions& options,

@@ -11,8 +11,8 @@
 #include "rgbdvo/estimation/ransac.hpp"
 #include "rgbdvo/estimation/refine.hpp"
 #include "rgbdvo/features/features.hpp"
-#include "rgbdvo/features/keypoint_tracking.hpp"
 #include "rgbdvo/features/matching.hpp"
+#include "rgbdvo/features/track_options.hpp"
 #include "rgbdvo/geometry/geometry.hpp"
 #include "rgbdvo/geometry/motion_prior.hpp"
 #include "rgbdvo/odometry/gravity_correction.hpp"
@@ -21,6 +21,26 @@
 #include "rgbdvo/sources/frame.hpp"
 
 namespace rgbdvo {
+
+// The motion model: kSixDof, any rigid motion (the paper), or kPlanar: the camera is rigidly
+// mounted on a robot driving on a flat floor, so each frame's motion is a turn about the floor's
+// normal and a translation along the floor. 3 degrees of freedom instead of 6: 2-pair RANSAC
+// hypotheses (EstimatePlanarRansac), a refinement of those 3 parameters, the depth fallback's
+// estimate projected onto them (ProjectPlanar).
+enum class MotionModelKind { kSixDof, kPlanar };
+// With the planar model, where the floor's normal in the camera frame comes from: a plane fitted
+// to the first frame's depth image (FitFloor; the floor must be in view), the first frame's
+// accelerometer reading (the robot standing still), or the mount as given.
+enum class FloorSource { kDepth, kAccelerometer, kGiven };
+
+struct MotionOptions {
+  MotionModelKind model = MotionModelKind::kSixDof;
+  FloorSource floor = FloorSource::kDepth;
+  double mount_pitch_deg = 0;  // with floor kGiven: the camera's pitch, deg (+: looks down)
+  double mount_roll_deg = 0;   // with floor kGiven: its roll, deg (+: the floor's normal leans
+                               // to the camera's +x; FloorFit's convention)
+  bool planar() const { return model == MotionModelKind::kPlanar; }
+};
 
 struct OdometryOptions {
   FeatureOptions features;
@@ -67,12 +87,6 @@ struct OdometryOptions {
   // (docs/decisions/0038-tracking-by-default.md). false = SIFT and matching on every frame, as
   // the paper (--preset paper).
   bool track_between_keyframes = true;
-  // With tracking and fuse_keyframe_pose, true: the fusion's second estimate of a new
-  // keyframe, from the tracked frame before it, by tracking the keyframe's keypoints back into
-  // that frame (from where the motion prior puts them) instead of running SIFT on it and
-  // matching. SIFT then runs once per keyframe, not twice: less CPU, a little less accurate
-  // on unregistered and strongly thinned recordings (docs/decisions/0039-track-fusion.md).
-  bool track_fusion = false;
   TrackOptions tracking;
   double track_stale_noise_ratio = 1.5;
   // After this many rejected frames in a row the reference is given up: the current frame
@@ -112,20 +126,7 @@ struct OdometryOptions {
   // depth_term_translation_std_m 0 = on every frame.
   int depth_term_step = 16;
   double depth_term_translation_std_m = 0.004;
-  // The motion model: "6dof" (any rigid motion, the paper) or "planar": the camera is
-  // rigidly mounted on a robot driving on a flat floor, so each frame's motion is a turn about
-  // the floor's normal and a translation along the floor. 3 degrees of freedom instead of 6:
-  // 2-pair RANSAC hypotheses (EstimatePlanarRansac), a refinement of those 3 parameters, the
-  // depth fallback's estimate projected onto them (ProjectPlanar).
-  std::string motion = "6dof";
-  // With "planar", where the floor's normal in the camera frame comes from: "depth" = a plane
-  // fitted to the first frame's depth image (FitFloor; the floor must be in view),
-  // "accelerometer" = the first frame's accelerometer reading (the robot standing still),
-  // "given" = mount_pitch_deg and mount_roll_deg.
-  std::string floor = "depth";
-  double mount_pitch_deg = 0;  // with floor "given": the camera's pitch, deg (+: looks down)
-  double mount_roll_deg = 0;   // with floor "given": its roll, deg (+: the floor's normal
-                               // leans to the camera's +x; FloorFit's convention)
+  MotionOptions motion;
   // Correct roll and pitch drift with the frames' accelerometer readings (GravityCorrection;
   // 6-DOF only: the planar model holds them fixed).
   bool gravity_correction = false;
@@ -136,7 +137,9 @@ struct OdometryOptions {
   void Check() const;
   std::string ToString() const;  // the effective configuration, one "key = value" per line
   // True when frames must carry accelerometer readings (Frame::gravity_in_cam).
-  bool NeedsAccelerometer() const { return gravity_correction || floor == "accelerometer"; }
+  bool NeedsAccelerometer() const {
+    return gravity_correction || (motion.planar() && motion.floor == FloorSource::kAccelerometer);
+  }
 };
 
 // Named configurations: "default" (rgbdvo's most accurate) and "paper" (exactly Fiala & Ufkes

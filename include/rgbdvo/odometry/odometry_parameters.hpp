@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -14,11 +15,13 @@
 
 namespace rgbdvo {
 
-// Where a parameter lives in an OdometryOptions.
-using ParameterRef = std::variant<bool*, int*, uint32_t*, double*, std::string*>;
+// Where a parameter lives in an OdometryOptions. An enum's values are written by name
+// (EnumNames in odometry_parameters.cpp).
+using ParameterRef = std::variant<bool*, int*, uint32_t*, double*, SiftImplementation*,
+                                  MotionModelKind*, FloorSource*>;
 
 struct OdometryParameter {
-  const char* key;   // "matching.ratio"
+  const char* key;   // "matching.ratio": the field's path in OdometryOptions
   const char* flag;  // "ratio": --ratio VALUE; a boolean has --NAME and --no-NAME
   const char* help;
   ParameterRef (*field)(OdometryOptions&);
@@ -31,6 +34,10 @@ struct OdometryParameter {
   void Set(const std::string& text, OdometryOptions* options) const;
 };
 
+// The names an enum parameter is written with, in its enumerators' order.
+template <typename E>
+const std::vector<std::pair<E, const char*>>& EnumNames();
+
 // All parameters, in the order of the printed configuration.
 const std::vector<OdometryParameter>& OdometryParameters();
 
@@ -38,7 +45,9 @@ const std::vector<OdometryParameter>& OdometryParameters();
 const OdometryParameter* FindParameter(const std::string& key);
 
 // A configuration file: one "key = value" a line, keys as OdometryParameters() names them;
-// '#' starts a comment, blank lines are ignored (so ToString()'s output is one). Each value
+// '#' starts a comment, blank lines are ignored (so ToString()'s output is one). Keys of earlier
+// versions are read too: renamed ones under their new name, removed ones at their old default
+// (a file they set otherwise is refused, with the reason). Each value
 // overrides `options`' in file order. Throws std::runtime_error naming `name` and the line for an
 // unknown key, a line without '=', or a bad value; the file as a whole is checked afterwards by
 // OdometryOptions::Check().
