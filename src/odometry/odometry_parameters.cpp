@@ -300,11 +300,11 @@ struct RetiredParameter {
 };
 const RetiredParameter kRetired[] = {
     {"tracking.fusion", "false",
-     "the keyframe fusion's tracks back were less accurate than SIFT there "
-     "(docs/decisions/0039-track-fusion.md)"},
+     "the keyframe fusion's tracks back were less accurate than SIFT there: "
+     "docs/decisions/0039-track-fusion.md"},
     {"tracking.max_back_error_px", "0",
-     "the forward-backward check dropped right tracks in motion blur "
-     "(docs/decisions/0032-track-option.md)"},
+     "the forward-backward check dropped right tracks in motion blur: "
+     "docs/decisions/0032-track-option.md"},
 };
 
 // Keys renamed to their field's path in OdometryOptions, still read under the old name.
