@@ -60,8 +60,7 @@ Tracker::Current Tracker::Begin(const Frame& frame, std::optional<Features> feat
   c.r.features = features ? static_cast<int>(features->size()) : 0;
   // Constant velocity from the last two estimated frames, timed by the colour images (the depth
   // images' times are irregular).
-  const bool moving = before_.known && last_.color_timestamp > before_.color_timestamp;
-  c.world_from_pred = moving
+  c.world_from_pred = Moving()
                           ? PredictConstantVelocity(before_.world_from_cam, before_.color_timestamp,
                                                     last_.world_from_cam, last_.color_timestamp,
                                                     frame.color_timestamp)
@@ -73,8 +72,7 @@ Tracker::Current Tracker::Begin(const Frame& frame, std::optional<Features> feat
 Rigid3d Tracker::DepthFromColor(const Frame& frame) const {
   // The camera's motion from the colour image's time to the depth image's at the last velocity,
   // when the offset is within the span that velocity was measured over.
-  const bool moving = before_.known && last_.color_timestamp > before_.color_timestamp;
-  if (!moving || !options_.compensate_depth_delay) return Rigid3d::Identity();
+  if (!Moving() || !options_.compensate_depth_delay) return Rigid3d::Identity();
   const double depth_delay = frame.timestamp - frame.color_timestamp;
   const double span = last_.color_timestamp - before_.color_timestamp;
   if (!(std::abs(depth_delay) <= span)) return Rigid3d::Identity();
@@ -410,6 +408,10 @@ std::string Tracker::GravityBrief() const {
     << ", largest tilt against a reading " << gravity_->max_tilt_deg() << " deg (time constant "
     << options_.gravity.time_constant_s << " s)";
   return s.str();
+}
+
+bool Tracker::Moving() const {
+  return before_.known && last_.color_timestamp > before_.color_timestamp;
 }
 
 Velocity Tracker::LastVelocity() const {

@@ -86,6 +86,8 @@ class Tracker {
   // With gravity_correction and a reading: turns the last estimated frame, and every pose the
   // next frames are chained from, toward the reading's down (GravityCorrection).
   void CorrectTilt(const Frame& frame);
+  // True when the velocity base lies before last_ in colour time: a velocity to predict with.
+  bool Moving() const;
   // From the velocity base to last_, per second of colour time (zero without both).
   Velocity LastVelocity() const;
 
