@@ -110,7 +110,7 @@ TEST_CASE("The robot path is planar: fixed height, pitch and roll, 360 degrees o
   CHECK_THROWS_WITH(MakeRobotPath(bad, 1), Catch::Contains("size_x_m"));
 }
 
-TEST_CASE("The robot's IR camera sees the floor where robot.txt says") {
+TEST_CASE("The robot's IR camera sees the floor where robot.txt says", "[long]") {
   const std::map<std::string, double> truth = ReadRobotTxt(Recording() + "/robot.txt");
   // The colour camera at 0.6 m, 12 degrees down, rolled 1 degree; the IR camera 2.5 cm along
   // its x axis, so 2.5 cm * sin(1 deg) cos(12 deg) lower, and the roll about its optical axis
@@ -136,7 +136,7 @@ TEST_CASE("The robot's IR camera sees the floor where robot.txt says") {
   CHECK(fit.roll_deg == Approx(truth.at("ir_roll_deg")).margin(0.1));
 }
 
-TEST_CASE("The robot recording's depth has the Kinect's noise, sigma = 1.425e-3 Z^2") {
+TEST_CASE("The robot recording's depth has the Kinect's noise, sigma = 1.425e-3 Z^2", "[long]") {
   // The first depth image against the same view rendered without noise, both quantised to raw
   // disparity: at 1.5-2.1 m (the floor and the wall ahead; sigma 3.2-6.3 mm, raw steps 6-12 mm)
   // their difference spreads about as the noise does; without noise it would be 0. Measured:
@@ -167,7 +167,7 @@ TEST_CASE("The robot recording's depth has the Kinect's noise, sigma = 1.425e-3 
   CHECK(rms < 1.6 * sigma);
 }
 
-TEST_CASE("The robot's accelerometer reads gravity and the centripetal acceleration") {
+TEST_CASE("The robot's accelerometer reads gravity and the centripetal acceleration", "[long]") {
   // Apparent gravity g - a in the colour camera's frame as the library reads it back: on the
   // straight the world's down; in the turn also v^2 / r = 0.267 m/s^2 away from the centre
   // (within one count, 0.012 m/s^2).
@@ -220,7 +220,7 @@ TEST_CASE("The odometry follows a short robot recording through its first turn")
   CHECK(RotationErrorDeg(end_truth, end_estimate) < 0.3);
 }
 
-TEST_CASE("On the robot's feature-poor side the depth surfaces join and pin the slide") {
+TEST_CASE("On the robot's feature-poor side the depth surfaces join and pin the slide", "[long]") {
   // 60 frames (2 s) along the grey mat, the grey panel ahead: 16-90 inliers, few of them on
   // the panel, where a turn and a sideways slide look alike. The depth term joins the frames
   // whose features leave the translation uncertain. Measured: ATE 31.4 mm with features only,

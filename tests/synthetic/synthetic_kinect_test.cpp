@@ -95,7 +95,7 @@ TEST_CASE("The depth-aware calibration lifts colour pixels onto the true points 
   CHECK(quantile(e_eq1, 0.95) > 5 * quantile(e_aware, 0.95));
 }
 
-TEST_CASE("The depth-aware mapping lowers odometry error where eq. 1 shears the scene") {
+TEST_CASE("The depth-aware mapping lowers odometry error where eq. 1 shears the scene", "[long]") {
   // Eq. 1 lifts a point seen at depth Z off by o (1 - Z / Z_ref) sideways: a shear of the scene
   // by |o| / Z_ref = 1 % per metre of depth. A camera moving along its optical axis by d then
   // appears to move d / 100 sideways as well, which a rigid alignment cannot take out of a path
