@@ -29,6 +29,7 @@ void OdometryOptions::Check() const {
     throw std::invalid_argument("OdometryOptions.depth_term_translation_std_m must be >= 0");
   gravity.Check();
   tracking.Check();
+  local_map.Check();
   if (!(track_stale_noise_ratio == 0 || track_stale_noise_ratio >= 1))
     throw std::invalid_argument(
         "OdometryOptions.track_stale_noise_ratio must be >= 1 (or 0 = no such keyframes)");
@@ -39,6 +40,18 @@ void OdometryOptions::Check() const {
   if (!(std::abs(motion.mount_pitch_deg) < 90 && std::abs(motion.mount_roll_deg) < 90))
     throw std::invalid_argument(
         "OdometryOptions.motion.mount_pitch_deg and mount_roll_deg must be within (-90, 90)");
+}
+
+void LocalMapOptions::Check() const {
+  if (window_keyframes < 2 || window_keyframes > 100)
+    throw std::invalid_argument("LocalMapOptions.window_keyframes must be in [2, 100]");
+  if (max_keyframes < window_keyframes || max_keyframes > 1000)
+    throw std::invalid_argument(
+        "LocalMapOptions.max_keyframes must be in [window_keyframes, 1000]");
+  if (!(search_radius_px > 0 && search_radius_px <= 100))
+    throw std::invalid_argument("LocalMapOptions.search_radius_px must be in (0, 100]");
+  if (max_iterations < 1 || max_iterations > 1000)
+    throw std::invalid_argument("LocalMapOptions.max_iterations must be in [1, 1000]");
 }
 
 OdometryOptions PresetOptions(const std::string& name) {
@@ -63,6 +76,7 @@ OdometryOptions PresetOptions(const std::string& name) {
     o.compensate_depth_delay = false;    // depth at the keypoint's own pixel
     o.depth_term_step = 0;               // feature residuals only
     o.track_between_keyframes = false;   // SIFT and matching on every frame
+    o.local_map.enabled = false;         // frame to frame only
     return o;
   }
   throw std::invalid_argument("unknown preset '" + name + "' (expected default or paper)");

@@ -35,6 +35,8 @@ Tracker::Tracker(const OdometryOptions& options, const Calibration& calib)
     depth_aligner_ = std::make_unique<DepthAligner>(d, calib_);
   }
   if (options_.gravity_correction) gravity_.emplace(options_.gravity);
+  if (options_.local_map.enabled && !options_.motion.planar() && !options_.gravity_correction)
+    map_ = std::make_unique<LocalMap>(options_, calib_);
 }
 
 // By value on purpose: the frame's own depth buffer is kept where nothing else refers to it.
@@ -235,6 +237,7 @@ FrameResult Tracker::Accept(const Frame& frame, Current* c) {
   // The velocity is what one estimate measured: after depth-aligned frames, this estimate's own
   // from the keyframe (the last frame's pose would add the error this estimate corrects).
   Advance(std::move(cur), new_keyframe, last_.pose_from_features ? last_ : key_);
+  if (new_keyframe) AdjustWithMap(&r);
   r.keyframe = new_keyframe;
   CorrectTilt(frame);
   r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
@@ -383,6 +386,22 @@ void Tracker::Restart(Reference ref) {
   last_ = std::move(ref);
   before_.known = false;
   rejected_run_ = 0;
+  if (map_) {
+    map_->Clear();
+    map_->AddKeyframe(key_);
+  }
+}
+
+void Tracker::AdjustWithMap(FrameResult* r) {
+  if (!map_) return;
+  const Stopwatch t0;
+  const Rigid3d correction = map_->AddKeyframe(key_) * key_.world_from_cam.inverse();
+  for (Rigid3d* pose : {&key_.world_from_cam, &last_.world_from_cam, &before_.world_from_cam,
+                        &depth_key_.world_from_cam}) {
+    *pose = correction * *pose;
+    pose->linear() = NearestRotation(pose->linear());
+  }
+  r->times.local_map += t0.Seconds();
 }
 
 void Tracker::CorrectTilt(const Frame& frame) {

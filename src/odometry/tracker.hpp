@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "local_map.hpp"
 #include "motion_measurer.hpp"
 #include "reference.hpp"
 #include "rgbdvo/estimation/depth_alignment.hpp"
@@ -81,8 +82,11 @@ class Tracker {
   // Makes cur (now at its world_from_cam) the last estimated frame, and the keyframe with
   // new_keyframe. The velocity is measured from `measured_from` (its pose and time) to cur.
   void Advance(Reference cur, bool new_keyframe, const Reference& measured_from);
-  // Both references become `ref` (the first reference, a restart).
+  // Both references become `ref` (the first reference, a restart), the map's only keyframe.
   void Restart(Reference ref);
+  // With the local map: the new keyframe into it, adjusted with the keyframes sharing its
+  // points; every pose the next frames are chained from moves with it.
+  void AdjustWithMap(FrameResult* r);
   // With gravity_correction and a reading: turns the last estimated frame, and every pose the
   // next frames are chained from, toward the reading's down (GravityCorrection).
   void CorrectTilt(const Frame& frame);
@@ -97,6 +101,7 @@ class Tracker {
   std::unique_ptr<DepthAligner> depth_aligner_;    // with depth_fallback
   std::optional<Eigen::Matrix3d> level_from_cam_;  // with the planar model
   std::optional<GravityCorrection> gravity_;       // with gravity_correction
+  std::unique_ptr<LocalMap> map_;                  // with local_map (6-DOF, no gravity)
   std::string motion_brief_;
 
   Phase phase_ = Phase::kNoReference;

@@ -235,8 +235,9 @@ std::string RunSummary::Timing() const {
   const double ms = frames > 0 ? 1000.0 / frames : 0.0;
   s << "ms/frame: decode " << decode_seconds * ms << ", features " << stage_seconds.features * ms
     << ", matching " << stage_seconds.matching * ms << ", lifting " << stage_seconds.lifting * ms
-    << ", ransac+refine " << stage_seconds.ransac * ms << ", writing " << write_seconds * ms
-    << ", waiting " << wait_seconds * ms << ", wall " << seconds * ms << " ("
+    << ", ransac+refine " << stage_seconds.ransac * ms << ", map " << stage_seconds.local_map * ms
+    << ", writing " << write_seconds * ms << ", waiting " << wait_seconds * ms << ", wall "
+    << seconds * ms << " ("
     << (threads > 1 ? std::to_string(threads) + " feature workers" : "1 thread") << ")";
   return s.str();
 }
@@ -317,6 +318,7 @@ RunSummary RunOdometry(FrameSource& source, Odometry& odometry,
     summary.stage_seconds.matching += result.times.matching;
     summary.stage_seconds.lifting += result.times.lifting;
     summary.stage_seconds.ransac += result.times.ransac;
+    summary.stage_seconds.local_map += result.times.local_map;
     summary.fallbacks += result.fallbacks;
     if (result.fallbacks > 0) ++summary.frames_with_fallback;
     summary.rematches += result.rematches;

@@ -42,6 +42,23 @@ struct MotionOptions {
   bool planar() const { return model == MotionModelKind::kPlanar; }
 };
 
+// The local map (docs/decisions/0048-local-map.md): each keyframe's keypoints with a 3D point
+// become map points; a later keyframe that sees one (where it projects, within search_radius_px,
+// by descriptor) adds an observation. After each new keyframe, it and the keyframes sharing the
+// most points with it (window_keyframes in all) are adjusted with their points (bundle
+// adjustment on the refinement's residuals), the keyframes outside that see those points held
+// fixed; the frames after it are measured from the adjusted pose. The map keeps the last
+// max_keyframes keyframes, and a point only while a keyframe after its first sees it. Off by
+// default: it does not yet beat the keyframe chain on the recordings measured.
+struct LocalMapOptions {
+  bool enabled = false;
+  int window_keyframes = 10;
+  int max_keyframes = 30;
+  double search_radius_px = 8;
+  int max_iterations = 10;  // Levenberg-Marquardt iterations at most per adjustment
+  void Check() const;
+};
+
 struct OdometryOptions {
   FeatureOptions features;
   MatchOptions matching;
@@ -89,6 +106,9 @@ struct OdometryOptions {
   bool track_between_keyframes = true;
   TrackOptions tracking;
   double track_stale_noise_ratio = 1.5;
+  // 6-DOF without gravity correction only: the planar model and the correction constrain poses
+  // the adjustment would not keep.
+  LocalMapOptions local_map;
   // After this many rejected frames in a row the reference is given up: the current frame
   // becomes the new reference at the last known pose (status "lost"), so a stuck reference
   // cannot freeze the trajectory forever. 0 = never.
@@ -163,6 +183,7 @@ bool HasEstimate(FrameStatus status);
 // Seconds spent per stage for one frame (for bench/speed).
 struct StageTimes {
   double features = 0, matching = 0, lifting = 0, ransac = 0;
+  double local_map = 0;  // the map's association and bundle adjustment
 };
 
 struct FrameResult {
