@@ -114,7 +114,7 @@ std::vector<uint8_t> WriteMcap(const std::string& compression, bool summary,
 
 std::string WriteTemp(const std::string& name, const std::vector<uint8_t>& bytes) {
   static const std::string dir = test::MakeTempDir("mcap");
-  const std::string path = dir + "/" + name;
+  std::string path = dir + "/" + name;
   WriteBytes(path, bytes);
   return path;
 }
