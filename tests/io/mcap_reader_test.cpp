@@ -288,7 +288,8 @@ TEST_CASE("MCAP reader refuses lengths beyond what is left, before allocating") 
   CHECK_THAT(RefusalOf(path), Catch::StartsWith(path + ": MCAP Chunk record at offset ") &&
                                   Catch::Contains("not the declared uncompressed_size"));
 
-  // A string inside the chunk claiming 4 GiB - 1 (the chunk's CRC zeroed, so not checked).
+  // A string inside the chunk claiming the largest length a u32 holds (the chunk's CRC zeroed,
+  // so not checked).
   const std::vector<uint8_t> plain = WriteMcap("", false);
   bytes = plain;
   const size_t records = RecordOffset(plain, 0x06) + 9 + 8 + 8 + 8 + 4 + 4 + 8;
