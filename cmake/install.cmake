@@ -13,8 +13,8 @@ install(TARGETS ${RGBDVO_INSTALL_TARGETS} EXPORT rgbdvoTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # Public: the folders a program using the library includes, and the headers they include in
 # turn. Private (not installed): SIFT's and Lucas-Kanade's internals, the SIMD kernels, the PNG
-# decoder, util/ (but the queue a KinectSource holds), calibration, synthetic scenes, and the
-# ROS bag source, whose library is not installed. tests/install/install_test.sh compiles every
+# decoder and the MCAP reader, util/ (but the queue a KinectSource holds), calibration, synthetic
+# scenes, and the ROS bag source, whose library is not installed. tests/install/install_test.sh compiles every
 # installed header against the installed tree alone.
 set(RGBDVO_PUBLIC_HEADER_DIRS odometry sources sensor io evaluation pipeline)
 set(RGBDVO_PUBLIC_HEADERS
@@ -29,6 +29,7 @@ endif()
 foreach(dir ${RGBDVO_PUBLIC_HEADER_DIRS})
   install(DIRECTORY include/rgbdvo/${dir} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rgbdvo
           PATTERN "png_decoder.hpp" EXCLUDE
+          PATTERN "mcap_reader.hpp" EXCLUDE
           PATTERN "rosbag_source.hpp" EXCLUDE)
 endforeach()
 foreach(header ${RGBDVO_PUBLIC_HEADERS})
