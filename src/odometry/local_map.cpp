@@ -30,7 +30,8 @@ int DescriptorDistance(const uint8_t* a, const uint8_t* b) {
 int64_t CellKey(double u, double v, double cell) {
   const auto cu = static_cast<int64_t>(std::floor(u / cell));
   const auto cv = static_cast<int64_t>(std::floor(v / cell));
-  return (cu << 32) ^ (cv & 0xffffffff);
+  return static_cast<int64_t>((static_cast<uint64_t>(cu) << 32) ^
+                              static_cast<uint64_t>(static_cast<uint32_t>(cv)));
 }
 
 }  // namespace
