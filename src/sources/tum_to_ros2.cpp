@@ -8,6 +8,7 @@
 
 #include "rgbdvo/io/mcap_writer.hpp"
 #include "rgbdvo/io/ros2_messages.hpp"
+#include "rgbdvo/io/rosbag2_sqlite.hpp"
 #include "rgbdvo/sources/tum_source.hpp"
 
 namespace rgbdvo {
@@ -43,6 +44,21 @@ class McapOut : public BagOut {
   McapWriter writer_;
 };
 
+class SqliteOut : public BagOut {
+ public:
+  explicit SqliteOut(const std::string& path) : writer_(path) {}
+  int AddTopic(const std::string& topic, const std::string& type) override {
+    return static_cast<int>(writer_.AddTopic(topic, type));
+  }
+  void Write(int topic, uint64_t time_ns, const std::vector<uint8_t>& data) override {
+    writer_.Write(topic, static_cast<int64_t>(time_ns), data);
+  }
+  void Close() override { writer_.Close(); }
+
+ private:
+  Rosbag2SqliteWriter writer_;
+};
+
 Ros2Header HeaderAt(double t, const std::string& frame) {
   Ros2Header h;
   h.sec = static_cast<int32_t>(std::floor(t));
@@ -71,8 +87,9 @@ Ros2Image ImageMessage(const cv::Mat& pixels, const std::string& encoding, const
 }  // namespace
 
 void TumToRos2Options::Check() const {
-  if (storage != "mcap")
-    throw std::invalid_argument("TumToRos2Options.storage must be mcap, not '" + storage + "'");
+  if (storage != "mcap" && storage != "sqlite3")
+    throw std::invalid_argument("TumToRos2Options.storage must be mcap or sqlite3, not '" +
+                                storage + "'");
   if (depth_encoding != "32FC1" && depth_encoding != "16UC1")
     throw std::invalid_argument("TumToRos2Options.depth_encoding must be 32FC1 or 16UC1, not '" +
                                 depth_encoding + "'");
@@ -84,7 +101,11 @@ size_t WriteTumAsRos2Bag(const std::string& folder, const std::string& out,
                          const TumToRos2Options& options) {
   options.Check();
   TumSource source(folder, TumSourceOptions());
-  std::unique_ptr<BagOut> bag = std::make_unique<McapOut>(out, options.compression);
+  std::unique_ptr<BagOut> bag;
+  if (options.storage == "sqlite3")
+    bag = std::make_unique<SqliteOut>(out);
+  else
+    bag = std::make_unique<McapOut>(out, options.compression);
   const int color_topic = bag->AddTopic(kColorTopic, kRos2ImageType);
   const int depth_topic = bag->AddTopic(kDepthTopic, kRos2ImageType);
   int color_info_topic = -1, depth_info_topic = -1;

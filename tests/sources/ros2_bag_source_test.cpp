@@ -4,10 +4,13 @@
 #include "rgbdvo/sources/ros2_bag_source.hpp"
 
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <tuple>
+#include <vector>
 
 #include "rgbdvo/io/mcap_writer.hpp"
 #include "rgbdvo/io/ros2_messages.hpp"
@@ -17,6 +20,7 @@
 
 using namespace rgbdvo;
 using namespace rgbdvo::test;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -240,4 +244,62 @@ TEST_CASE("Bad ROS 2 bags: one line naming the file and the topic or record, row
     CHECK_THAT(out, Catch::Contains("mixed.mcap") && Catch::Contains("/cam/depth/image") &&
                         Catch::Contains("sensor_msgs/msg/PointCloud2"));
   }
+}
+
+TEST_CASE("A .db3 bag and a split rosbag2 folder give the folder's trajectory") {
+  const std::string dir = MakeTempDir("ros2_db3");
+  TumToRos2Options options;
+  options.storage = "sqlite3";
+  const std::string db3 = dir + "/x.db3";
+  CHECK(WriteTumAsRos2Bag(kExcerpt, db3, options) == 30);
+  // A folder of three split files, MCAP and sqlite3, named so that name order is not the
+  // order metadata.yaml gives.
+  fs::create_directories(dir + "/split");
+  TumToRos2Options part = options;
+  part.count = 10;
+  for (const auto& [first, name, storage] :
+       std::vector<std::tuple<size_t, std::string, std::string>>{
+           {0, "b_9.db3", "sqlite3"}, {10, "b_10.mcap", "mcap"}, {20, "b_2.db3", "sqlite3"}}) {
+    part.first = first;
+    part.storage = storage;
+    CHECK(WriteTumAsRos2Bag(kExcerpt, dir + "/split/" + name, part) == 10);
+  }
+  std::ofstream(dir + "/split/metadata.yaml")
+      << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
+         "  relative_file_paths:\n    - b_9.db3\n    - b_10.mcap\n    - \"b_2.db3\"\n"
+         "  duration:\n    nanoseconds: 1\n";
+  int code = 0;
+  Run("run " + kExcerpt + " --calib tum_fr1 --quiet --tum " + dir + "/folder.txt", &code);
+  REQUIRE(code == 0);
+  for (const std::string& bag : {db3, dir + "/split"}) {
+    INFO(bag);
+    Run("run " + bag + " --calib tum_fr1 --quiet --tum " + dir + "/bag.txt", &code);
+    CHECK(code == 0);
+    CHECK(Slurp(dir + "/bag.txt") == Slurp(dir + "/folder.txt"));
+    const std::string info = Run("info " + bag, &code);
+    CHECK(code == 0);
+    CHECK_THAT(info, Catch::Contains("/camera/depth/image") && Catch::Contains("30"));
+  }
+}
+
+TEST_CASE("Bad .db3 bags and folders: one line naming the file, exit 1") {
+  const std::string dir = MakeTempDir("ros2_db3_bad");
+  int code = 0;
+  std::ofstream(dir + "/text.db3") << "this is no database, only text long enough to look\n";
+  std::string out = Run("run " + dir + "/text.db3 --calib tum_fr1", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("text.db3") && Catch::Contains("sqlite3"));
+
+  fs::create_directories(dir + "/nolist");
+  std::ofstream(dir + "/nolist/metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n";
+  out = Run("run " + dir + "/nolist --calib tum_fr1", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("metadata.yaml") && Catch::Contains("relative_file_paths"));
+
+  fs::create_directories(dir + "/zstd");
+  std::ofstream(dir + "/zstd/metadata.yaml")
+      << "rosbag2_bagfile_information:\n  relative_file_paths:\n  - x_0.mcap.zstd\n";
+  out = Run("run " + dir + "/zstd --calib tum_fr1", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("x_0.mcap.zstd"));
 }

@@ -10,7 +10,7 @@
 namespace rgbdvo {
 
 struct TumToRos2Options {
-  std::string storage = "mcap";          // "mcap" (.mcap file)
+  std::string storage = "mcap";          // "mcap" (.mcap file) or "sqlite3" (.db3 file)
   std::string compression = "zstd";      // MCAP chunks: "", "zstd" or "lz4"
   std::string depth_encoding = "32FC1";  // 32FC1 metres (the folder's depth exactly) or 16UC1 mm
   bool camera_info = true;               // camera_info on both image topics' siblings
