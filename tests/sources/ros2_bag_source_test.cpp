@@ -3,6 +3,7 @@
 // topics to choose; bad bags.
 #include "rgbdvo/sources/ros2_bag_source.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 
 #include "rgbdvo/io/mcap_writer.hpp"
 #include "rgbdvo/io/ros2_messages.hpp"
+#include "rgbdvo/io/trajectory_io.hpp"
 #include "rgbdvo/sources/tum_source.hpp"
 #include "rgbdvo/sources/tum_to_ros2.hpp"
 #include "test_support.hpp"
@@ -302,4 +304,34 @@ TEST_CASE("Bad .db3 bags and folders: one line naming the file, exit 1") {
   out = Run("run " + dir + "/zstd --calib tum_fr1", &code);
   CHECK(code == 1);
   CHECK_THAT(out, Catch::Contains("x_0.mcap.zstd"));
+}
+
+TEST_CASE("16UC1 bags (MCAP lz4 and .db3) give the folder's trajectory within a millimetre") {
+  const std::string dir = MakeTempDir("ros2_bag16_run");
+  int code = 0;
+  Run("run " + kExcerpt + " --calib tum_fr1 --quiet --tum " + dir + "/folder.txt", &code);
+  REQUIRE(code == 0);
+  const Trajectory folder = ReadTrajectory(dir + "/folder.txt");
+  TumToRos2Options options;
+  options.depth_encoding = "16UC1";
+  options.compression = "lz4";
+  for (const std::string storage : {"mcap", "sqlite3"}) {
+    options.storage = storage;
+    const std::string bag = dir + "/x16." + (storage == "mcap" ? "mcap" : "db3");
+    WriteTumAsRos2Bag(kExcerpt, bag, options);
+    Run("run " + bag + " --calib tum_fr1 --quiet --tum " + dir + "/bag.txt", &code);
+    REQUIRE(code == 0);
+    const Trajectory got = ReadTrajectory(dir + "/bag.txt");
+    REQUIRE(got.poses.size() == folder.poses.size());
+    // Depth rounded to whole millimetres moves each pose by far less than a millimetre.
+    double worst_m = 0;
+    for (size_t i = 0; i < got.poses.size(); ++i) {
+      CHECK(got.poses[i].timestamp == folder.poses[i].timestamp);
+      worst_m = std::max(worst_m, (got.poses[i].world_from_cam.translation() -
+                                   folder.poses[i].world_from_cam.translation())
+                                      .norm());
+    }
+    INFO(storage << ": largest position difference " << worst_m << " m");
+    CHECK(worst_m < 0.001);
+  }
 }
