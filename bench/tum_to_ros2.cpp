@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <iostream>
 
-int main(int argc, char** argv) {
+namespace {
+
+int Run(int argc, char** argv) {
   CLI::App app("TUM RGB-D folder -> ROS 2 bag (MCAP or sqlite3 .db3, by OUT's extension)");
   std::string folder, out, compression = "zstd";
   bool no_camera_info = false;
@@ -39,4 +41,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {  // the command line's own set-up failing
+    std::cerr << "rgbdvo_tum_to_ros2: " << e.what() << std::endl;
+    return 1;
+  }
 }

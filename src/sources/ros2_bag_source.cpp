@@ -102,7 +102,7 @@ struct Ros2BagSource::Impl {
       const size_t slash = prefix.rfind('/');
       if (slash == std::string::npos) break;
       prefix.resize(slash);
-      const std::string candidate = prefix + "/camera_info";
+      std::string candidate = prefix + "/camera_info";
       if (first_camera_info.count(candidate) > 0) return candidate;
     }
     return "";

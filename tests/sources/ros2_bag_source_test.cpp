@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -63,11 +64,12 @@ std::string WriteCompressedBag(
     const Frame f = *folder.Next();
     Ros2CompressedImage c, d;
     c.header.sec = static_cast<int32_t>(f.color_timestamp);
-    c.header.nanosec = static_cast<uint32_t>((f.color_timestamp - c.header.sec) * 1e9 + 0.5);
+    c.header.nanosec =
+        static_cast<uint32_t>(std::llround((f.color_timestamp - c.header.sec) * 1e9));
     c.format = "png";
     cv::imencode(".png", f.bgr, c.data);
     d.header.sec = static_cast<int32_t>(f.timestamp);
-    d.header.nanosec = static_cast<uint32_t>((f.timestamp - d.header.sec) * 1e9 + 0.5);
+    d.header.nanosec = static_cast<uint32_t>(std::llround((f.timestamp - d.header.sec) * 1e9));
     d.format = "16UC1; compressedDepth png";
     d.data.assign(12, 0);
     cv::Mat mm;
