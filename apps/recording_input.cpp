@@ -8,6 +8,7 @@
 #include "rgbdvo/sensor/calibration_catalog.hpp"
 #include "rgbdvo/sources/association_file.hpp"
 #include "rgbdvo/sources/pairing.hpp"
+#include "rgbdvo/sources/ros2_bag_source.hpp"
 #include "run_common.hpp"
 #ifdef RGBDVO_WITH_ROSBAG
 #include "rgbdvo/sources/rosbag_source.hpp"
@@ -26,16 +27,27 @@ void RecordingArgs::AddFlags(CLI::App* cmd) {
   cmd->add_option("--max-dt", source.tum.max_time_diff_s, "max rgb-depth time difference, s")
       ->capture_default_str();
   AddPairingFlag(cmd, &pairing);
-  cmd->add_option("--rgb-topic", rgb_topic, "ROS bag: colour sensor_msgs/Image topic")
-      ->capture_default_str();
+  const auto given = [](bool* flag) { return [flag](const std::string&) { *flag = true; }; };
+  cmd->add_option("--rgb-topic", rgb_topic,
+                  "ROS bag: colour sensor_msgs/Image topic (ROS 2: Image or CompressedImage; "
+                  "default: the only image topic without 'depth' in its name)")
+      ->capture_default_str()
+      ->each(given(&rgb_topic_given));
   cmd->add_option("--depth-topic", depth_topic,
-                  "ROS bag: depth sensor_msgs/Image topic (16UC1 mm or 32FC1 m)")
-      ->capture_default_str();
-  cmd->add_option("--rgb-info-topic", rgb_info_topic, "ROS bag: colour sensor_msgs/CameraInfo")
-      ->capture_default_str();
+                  "ROS bag: depth sensor_msgs/Image topic (16UC1 mm or 32FC1 m; ROS 2: also "
+                  "compressedDepth; default: the only image topic with 'depth' in its name)")
+      ->capture_default_str()
+      ->each(given(&depth_topic_given));
+  cmd->add_option("--rgb-info-topic", rgb_info_topic,
+                  "ROS bag: colour sensor_msgs/CameraInfo (ROS 2 default: the camera_info "
+                  "beside the colour topic)")
+      ->capture_default_str()
+      ->each(given(&rgb_info_topic_given));
   cmd->add_option("--depth-info-topic", depth_info_topic,
-                  "ROS bag: depth sensor_msgs/CameraInfo (used first)")
-      ->capture_default_str();
+                  "ROS bag: depth sensor_msgs/CameraInfo (used first; ROS 2 default: the "
+                  "camera_info beside the depth topic)")
+      ->capture_default_str()
+      ->each(given(&depth_info_topic_given));
 }
 
 bool IsRosbagFile(const std::string& path) {
@@ -82,6 +94,45 @@ void ReportSkippedFrames(const FrameSource& recording, const SourceOptions& opti
             << (one_to_one ? ", one-to-one pairing" : "") << first << "\n";
 }
 
+// The calibration of a bag's run: --calib, else the bag's camera_info.
+void BagCalibration(const RecordingArgs& args, const std::optional<Calibration>& info,
+                    const std::string& info_topics, Recording* r) {
+  if (!args.calib.empty()) {
+    r->calib_source = FindCalibration(args.calib);
+    r->calib = LoadCalibration(r->calib_source);
+    r->inputs.push_back(r->calib_source);
+  } else if (info) {
+    r->calib = *info;
+    r->calib_source = info->description + " (registered depth: identity colour->depth mapping)";
+  } else {
+    throw std::runtime_error(args.path + ": no camera_info on " + info_topics +
+                             "; give the camera with --calib");
+  }
+}
+
+Recording OpenRos2Bag(const RecordingArgs& args) {
+  if (ParsePairing(args.pairing) != Pairing::kNearest)
+    throw std::runtime_error(args.path + ": --pairing " + args.pairing +
+                             " is not implemented for ROS bags (they pair nearest in time)");
+  Ros2BagSourceOptions options;
+  if (args.rgb_topic_given) options.rgb_topic = args.rgb_topic;
+  if (args.depth_topic_given) options.depth_topic = args.depth_topic;
+  if (args.rgb_info_topic_given) options.rgb_info_topic = args.rgb_info_topic;
+  if (args.depth_info_topic_given) options.depth_info_topic = args.depth_info_topic;
+  options.max_time_diff_s = args.source.tum.max_time_diff_s;
+  auto bag = std::make_unique<Ros2BagSource>(args.path, options);
+  if (!bag->scan_error().empty())
+    std::cerr << "rgbdvo: warning: " << bag->scan_error() << "; the frames before it are run\n";
+  Recording r;
+  r.inputs = {args.path};
+  const Ros2BagSourceOptions& chosen = bag->chosen();
+  const auto named = [](const std::string& topic) { return topic.empty() ? "(none)" : topic; };
+  BagCalibration(args, bag->CameraInfoCalibration(),
+                 named(chosen.depth_info_topic) + " or " + named(chosen.rgb_info_topic), &r);
+  r.source = std::move(bag);
+  return r;
+}
+
 Recording OpenBag(const RecordingArgs& args) {
 #ifdef RGBDVO_WITH_ROSBAG
   if (ParsePairing(args.pairing) != Pairing::kNearest)
@@ -96,17 +147,8 @@ Recording OpenBag(const RecordingArgs& args) {
   auto bag = std::make_unique<RosbagSource>(args.path, options);
   Recording r;
   r.inputs = {args.path};
-  if (!args.calib.empty()) {
-    r.calib_source = FindCalibration(args.calib);
-    r.calib = LoadCalibration(r.calib_source);
-    r.inputs.push_back(r.calib_source);
-  } else if (const std::optional<Calibration> info = bag->CameraInfoCalibration()) {
-    r.calib = *info;
-    r.calib_source = info->description + " (registered depth: identity colour->depth mapping)";
-  } else {
-    throw std::runtime_error(args.path + ": no camera_info on " + args.depth_info_topic + " or " +
-                             args.rgb_info_topic + "; give the camera with --calib");
-  }
+  BagCalibration(args, bag->CameraInfoCalibration(),
+                 args.depth_info_topic + " or " + args.rgb_info_topic, &r);
   r.source = std::move(bag);
   return r;
 #else
@@ -128,6 +170,14 @@ Recording OpenRecordingInput(const RecordingArgs& args) {
                                "/imu topic); --gravity and --floor accelerometer need a TUM "
                                "folder with accelerometer.txt or a fakenect recording");
     return OpenBag(args);
+  }
+  if (IsRos2Bag(args.path)) {
+    if (args.source.tum.accelerometer)
+      throw std::runtime_error(args.path +
+                               ": accelerometer readings are not read from ROS 2 bags yet (their "
+                               "sensor_msgs/msg/Imu topic); --gravity and --floor accelerometer "
+                               "need a TUM folder with accelerometer.txt or a fakenect recording");
+    return OpenRos2Bag(args);
   }
   const bool is_file = !std::filesystem::is_directory(args.path);
   if (is_file && !IsAssociationFile(args.path))

@@ -1,6 +1,6 @@
 #pragma once
-// What `run` reads: a recorded folder (TUM RGB-D, fakenect) or a ROS 1 bag, with its
-// calibration (--calib, or a bag's own camera_info), and the flags that choose them.
+// What `run` reads: a recorded folder (TUM RGB-D, fakenect), a ROS 1 bag or a ROS 2 bag, with
+// its calibration (--calib, or a bag's own camera_info), and the flags that choose them.
 
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -22,6 +22,9 @@ struct RecordingArgs {
   std::string rgb_topic = "/camera/rgb/image_color", depth_topic = "/camera/depth/image";
   std::string rgb_info_topic = "/camera/rgb/camera_info";
   std::string depth_info_topic = "/camera/depth/camera_info";
+  // Which topic flags were given: a ROS 2 bag chooses the others itself (ros2_bag_source.hpp).
+  bool rgb_topic_given = false, depth_topic_given = false;
+  bool rgb_info_topic_given = false, depth_info_topic_given = false;
   void AddFlags(CLI::App* cmd);  // --calib, --depth-scale, --max-dt, --pairing, the topic flags
 };
 

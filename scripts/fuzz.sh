@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-30}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(png tum_list accelerometer fakenect_index pnm calibration pixel_pairs trajectory mcap)
+[ ${#targets[@]} -eq 0 ] && targets=(png tum_list accelerometer fakenect_index pnm calibration pixel_pairs trajectory mcap cdr)
 
 scripts/install_packages.sh clang libclang-rt-14-dev
 

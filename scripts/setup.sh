@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libopencv-dev libopencv-contrib-dev libeigen3-dev libfreenect-dev libisal-dev
           libceres-dev
           librosbag-storage-dev libsensor-msgs-dev libroscpp-core-dev
-          libzstd-dev liblz4-dev
+          libzstd-dev liblz4-dev libsqlite3-dev
           libfreenect-bin libcli11-dev catch2 xvfb xdotool gnuplot-nox python3-numpy help2man man-db
           ${RGBDVO_EXTRA_PACKAGES:-})
 scripts/install_packages.sh "${packages[@]}"

@@ -150,7 +150,7 @@ TEST_CASE("A bag's 16UC1 depth is read as millimetres, from compressed chunks to
   CHECK(cv::countNonZero(got.depth_m) == cv::countNonZero(expected.depth_m));
 }
 
-TEST_CASE("rgbdvo run on a bag writes the folder's trajectory; info lists its topics") {
+TEST_CASE("rgbdvo run on a bag writes the folder's trajectory, and info lists its topics") {
   const ScopedTempDir scoped("rgbdvo_test_bag_run_");
   const std::string& dir = scoped.path();
   const std::string bag = WriteBag(dir + "/x.bag");
