@@ -104,6 +104,156 @@ std::map<uint16_t, uint64_t> IdMap(Fields& f, const char* what) {
   return m;
 }
 
+// One reader per record type: its fields in the specification's order.
+McapHeader ReadHeader(Fields& f) {
+  McapHeader h;
+  h.profile = f.String();
+  h.library = f.String();
+  return h;
+}
+
+McapFooter ReadFooter(Fields& f) {
+  McapFooter h;
+  h.summary_start = f.U64();
+  h.summary_offset_start = f.U64();
+  h.summary_crc = f.U32();
+  return h;
+}
+
+McapSchema ReadSchema(Fields& f) {
+  McapSchema s;
+  s.id = f.U16();
+  s.name = f.String();
+  s.encoding = f.String();
+  s.data = f.Bytes(f.U32());
+  return s;
+}
+
+McapChannel ReadChannel(Fields& f) {
+  McapChannel c;
+  c.id = f.U16();
+  c.schema_id = f.U16();
+  c.topic = f.String();
+  c.message_encoding = f.String();
+  c.metadata = StringMap(f, "the metadata map");
+  return c;
+}
+
+McapMessage ReadMessage(Fields& f) {
+  McapMessage m;
+  m.channel_id = f.U16();
+  m.sequence = f.U32();
+  m.log_time = f.U64();
+  m.publish_time = f.U64();
+  m.data = f.Rest();
+  return m;
+}
+
+McapChunk ReadChunk(Fields& f, const uint8_t** chunk_records) {
+  McapChunk c;
+  c.message_start_time = f.U64();
+  c.message_end_time = f.U64();
+  c.uncompressed_size = f.U64();
+  c.uncompressed_crc = f.U32();
+  c.compression = f.String();
+  c.compressed_size = f.U64();
+  *chunk_records = f.Take(c.compressed_size, "the records");
+  return c;
+}
+
+McapMessageIndex ReadMessageIndex(Fields& f) {
+  McapMessageIndex m;
+  m.channel_id = f.U16();
+  f.Entries("the records array", [&m](Fields& e) {
+    const uint64_t time = e.U64();
+    m.records.emplace_back(time, e.U64());
+  });
+  return m;
+}
+
+McapChunkIndex ReadChunkIndex(Fields& f) {
+  McapChunkIndex c;
+  c.message_start_time = f.U64();
+  c.message_end_time = f.U64();
+  c.chunk_start_offset = f.U64();
+  c.chunk_length = f.U64();
+  c.message_index_offsets = IdMap(f, "the message index offsets map");
+  c.message_index_length = f.U64();
+  c.compression = f.String();
+  c.compressed_size = f.U64();
+  c.uncompressed_size = f.U64();
+  return c;
+}
+
+McapAttachment ReadAttachment(Fields& f, const uint8_t* content, uint64_t size) {
+  McapAttachment a;
+  a.log_time = f.U64();
+  a.create_time = f.U64();
+  a.name = f.String();
+  a.media_type = f.String();
+  a.data = f.Bytes(f.U64());
+  const uint64_t crc_covers = size - f.left();
+  a.crc = f.U32();
+  if (a.crc != 0 && crc32_gzip_refl(0, content, crc_covers) != a.crc)
+    throw std::runtime_error("CRC mismatch (the attachment's bytes are corrupt)");
+  return a;
+}
+
+McapAttachmentIndex ReadAttachmentIndex(Fields& f) {
+  McapAttachmentIndex a;
+  a.offset = f.U64();
+  a.length = f.U64();
+  a.log_time = f.U64();
+  a.create_time = f.U64();
+  a.data_size = f.U64();
+  a.name = f.String();
+  a.media_type = f.String();
+  return a;
+}
+
+McapStatistics ReadStatistics(Fields& f) {
+  McapStatistics s;
+  s.message_count = f.U64();
+  s.schema_count = f.U16();
+  s.channel_count = f.U32();
+  s.attachment_count = f.U32();
+  s.metadata_count = f.U32();
+  s.chunk_count = f.U32();
+  s.message_start_time = f.U64();
+  s.message_end_time = f.U64();
+  s.channel_message_counts = IdMap(f, "the channel message counts map");
+  return s;
+}
+
+McapMetadata ReadMetadata(Fields& f) {
+  McapMetadata m;
+  m.name = f.String();
+  m.metadata = StringMap(f, "the metadata map");
+  return m;
+}
+
+McapMetadataIndex ReadMetadataIndex(Fields& f) {
+  McapMetadataIndex m;
+  m.offset = f.U64();
+  m.length = f.U64();
+  m.name = f.String();
+  return m;
+}
+
+McapSummaryOffset ReadSummaryOffset(Fields& f) {
+  McapSummaryOffset s;
+  s.group_opcode = f.U8();
+  s.group_start = f.U64();
+  s.group_length = f.U64();
+  return s;
+}
+
+McapDataEnd ReadDataEnd(Fields& f) {
+  McapDataEnd d;
+  d.data_section_crc = f.U32();
+  return d;
+}
+
 // The record's body from its content; for a chunk also where its records are in `content`.
 // Fields after the known ones (a later minor version's) are ignored, as the specification asks.
 McapRecord Parse(uint8_t opcode, const uint8_t* content, uint64_t size,
@@ -112,155 +262,51 @@ McapRecord Parse(uint8_t opcode, const uint8_t* content, uint64_t size,
   McapRecord r;
   r.opcode = opcode;
   switch (opcode) {
-    case kHeader: {
-      McapHeader h;
-      h.profile = f.String();
-      h.library = f.String();
-      r.body = h;
+    case kHeader:
+      r.body = ReadHeader(f);
       break;
-    }
-    case kFooter: {
-      McapFooter h;
-      h.summary_start = f.U64();
-      h.summary_offset_start = f.U64();
-      h.summary_crc = f.U32();
-      r.body = h;
+    case kFooter:
+      r.body = ReadFooter(f);
       break;
-    }
-    case kSchema: {
-      McapSchema s;
-      s.id = f.U16();
-      s.name = f.String();
-      s.encoding = f.String();
-      s.data = f.Bytes(f.U32());
-      r.body = std::move(s);
+    case kSchema:
+      r.body = ReadSchema(f);
       break;
-    }
-    case kChannel: {
-      McapChannel c;
-      c.id = f.U16();
-      c.schema_id = f.U16();
-      c.topic = f.String();
-      c.message_encoding = f.String();
-      c.metadata = StringMap(f, "the metadata map");
-      r.body = std::move(c);
+    case kChannel:
+      r.body = ReadChannel(f);
       break;
-    }
-    case kMessage: {
-      McapMessage m;
-      m.channel_id = f.U16();
-      m.sequence = f.U32();
-      m.log_time = f.U64();
-      m.publish_time = f.U64();
-      m.data = f.Rest();
-      r.body = std::move(m);
+    case kMessage:
+      r.body = ReadMessage(f);
       break;
-    }
-    case kChunk: {
-      McapChunk c;
-      c.message_start_time = f.U64();
-      c.message_end_time = f.U64();
-      c.uncompressed_size = f.U64();
-      c.uncompressed_crc = f.U32();
-      c.compression = f.String();
-      c.compressed_size = f.U64();
-      *chunk_records = f.Take(c.compressed_size, "the records");
-      r.body = std::move(c);
+    case kChunk:
+      r.body = ReadChunk(f, chunk_records);
       break;
-    }
-    case kMessageIndex: {
-      McapMessageIndex m;
-      m.channel_id = f.U16();
-      f.Entries("the records array", [&m](Fields& e) {
-        const uint64_t time = e.U64();
-        m.records.emplace_back(time, e.U64());
-      });
-      r.body = std::move(m);
+    case kMessageIndex:
+      r.body = ReadMessageIndex(f);
       break;
-    }
-    case kChunkIndex: {
-      McapChunkIndex c;
-      c.message_start_time = f.U64();
-      c.message_end_time = f.U64();
-      c.chunk_start_offset = f.U64();
-      c.chunk_length = f.U64();
-      c.message_index_offsets = IdMap(f, "the message index offsets map");
-      c.message_index_length = f.U64();
-      c.compression = f.String();
-      c.compressed_size = f.U64();
-      c.uncompressed_size = f.U64();
-      r.body = std::move(c);
+    case kChunkIndex:
+      r.body = ReadChunkIndex(f);
       break;
-    }
-    case kAttachment: {
-      McapAttachment a;
-      a.log_time = f.U64();
-      a.create_time = f.U64();
-      a.name = f.String();
-      a.media_type = f.String();
-      a.data = f.Bytes(f.U64());
-      const uint64_t crc_covers = size - f.left();
-      a.crc = f.U32();
-      if (a.crc != 0 && crc32_gzip_refl(0, content, crc_covers) != a.crc)
-        throw std::runtime_error("CRC mismatch (the attachment's bytes are corrupt)");
-      r.body = std::move(a);
+    case kAttachment:
+      r.body = ReadAttachment(f, content, size);
       break;
-    }
-    case kAttachmentIndex: {
-      McapAttachmentIndex a;
-      a.offset = f.U64();
-      a.length = f.U64();
-      a.log_time = f.U64();
-      a.create_time = f.U64();
-      a.data_size = f.U64();
-      a.name = f.String();
-      a.media_type = f.String();
-      r.body = std::move(a);
+    case kAttachmentIndex:
+      r.body = ReadAttachmentIndex(f);
       break;
-    }
-    case kStatistics: {
-      McapStatistics s;
-      s.message_count = f.U64();
-      s.schema_count = f.U16();
-      s.channel_count = f.U32();
-      s.attachment_count = f.U32();
-      s.metadata_count = f.U32();
-      s.chunk_count = f.U32();
-      s.message_start_time = f.U64();
-      s.message_end_time = f.U64();
-      s.channel_message_counts = IdMap(f, "the channel message counts map");
-      r.body = std::move(s);
+    case kStatistics:
+      r.body = ReadStatistics(f);
       break;
-    }
-    case kMetadata: {
-      McapMetadata m;
-      m.name = f.String();
-      m.metadata = StringMap(f, "the metadata map");
-      r.body = std::move(m);
+    case kMetadata:
+      r.body = ReadMetadata(f);
       break;
-    }
-    case kMetadataIndex: {
-      McapMetadataIndex m;
-      m.offset = f.U64();
-      m.length = f.U64();
-      m.name = f.String();
-      r.body = std::move(m);
+    case kMetadataIndex:
+      r.body = ReadMetadataIndex(f);
       break;
-    }
-    case kSummaryOffset: {
-      McapSummaryOffset s;
-      s.group_opcode = f.U8();
-      s.group_start = f.U64();
-      s.group_length = f.U64();
-      r.body = s;
+    case kSummaryOffset:
+      r.body = ReadSummaryOffset(f);
       break;
-    }
-    case kDataEnd: {
-      McapDataEnd d;
-      d.data_section_crc = f.U32();
-      r.body = d;
+    case kDataEnd:
+      r.body = ReadDataEnd(f);
       break;
-    }
     case 0:
       throw std::runtime_error("opcode 0 is not a record type");
     default:
