@@ -44,19 +44,20 @@ struct CaptureArgs {
   bool quiet = false, no_drop = false, no_accel = false;
   int frame_delay_ms = 0;  // tests only (debug_flags.hpp): an odometry this much slower
   KinectSourceOptions kinect;
-  RunOptions run;
-  std::unique_ptr<OdometryFlags> odometry_flags;
+  std::unique_ptr<ConfigurationFlags> configuration_flags;
 };
 
 constexpr int kExitDeviceLost = 3;
 
 int Capture(CaptureArgs& a) {
-  if (a.odometry_flags->dump_requested()) {
-    std::cout << a.odometry_flags->DumpConfig() << std::flush;
+  if (a.configuration_flags->dump_requested()) {
+    std::cout << a.configuration_flags->DumpConfig() << std::flush;
     return 0;
   }
   if (a.calib.empty()) throw CLI::RequiredError("--calib");
-  const OdometryOptions odometry_options = a.odometry_flags->Resolve();
+  const Configuration configuration = a.configuration_flags->Resolve();
+  const OdometryOptions& odometry_options = configuration.odometry;
+  const RunOptions& run_options = configuration.run;
   const std::string calib_path = FindCalibration(a.calib);
   const Calibration calib = LoadCalibration(calib_path);
   a.kinect.drop_when_behind = !a.no_drop;
@@ -65,9 +66,6 @@ int Capture(CaptureArgs& a) {
   a.kinect.stop = &StopOnSignals::Flag();
   a.kinect.pairing = ParsePairing(a.pairing);
   a.kinect.Check();
-  // Read no further ahead than the workers need: a backlog then waits in the source's queue,
-  // where the oldest pair is dropped and counted (the newest frame wins).
-  a.run.queue_frames = 1;
   a.outputs.RefuseInputs({calib_path});
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
@@ -81,7 +79,7 @@ int Capture(CaptureArgs& a) {
 
   KinectSource source(a.kinect);
   if (!a.quiet) {
-    PrintConfiguration(info, source.Describe(), calib_path, calib, odometry_options, a.run);
+    PrintConfiguration(info, source.Describe(), calib_path, calib, odometry_options, run_options);
     info << "# Ctrl-C (or SIGTERM) stops cleanly" << std::endl;
   }
   LimitOpenCvThreads();
@@ -103,7 +101,7 @@ int Capture(CaptureArgs& a) {
     DelayFrame(a.frame_delay_ms);
   };
   const RunSummary summary =
-      RunOdometry(source, odometry, writer_ptrs, on_frame, a.run, PrintWarning(progress));
+      RunOdometry(source, odometry, writer_ptrs, on_frame, run_options, PrintWarning(progress));
   status.Finish();
   const CaptureStats stats = source.stats();
   info << summary.Brief() << "; " << stats.Brief() << std::endl;
@@ -147,9 +145,12 @@ void AddCaptureCommand(CLI::App& app) {
   cmd->add_flag("--no-drop", args->no_drop,
                 "wait for the odometry instead of dropping frames (for fakenect replays)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
-  AddThreadsFlag(cmd, &args->run);
   AddFrameDelayFlag(cmd, &args->frame_delay_ms);
-  args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
+  // Read no further ahead than the workers need: a backlog then waits in the source's queue,
+  // where the oldest pair is dropped and counted (the newest frame wins).
+  RunOptions run_defaults;
+  run_defaults.queue_frames = 1;
+  args->configuration_flags = std::make_unique<ConfigurationFlags>(cmd, run_defaults);
   cmd->callback([args] {
     const int code = Capture(*args);
     if (code != 0) throw CLI::RuntimeError(code);

@@ -26,9 +26,8 @@ struct RunArgs {
   TrajectoryOutputs outputs;
   bool quiet = false, timing = false;
   int frame_delay_ms = 0;  // tests only (debug_flags.hpp): an odometry this much slower
-  RunOptions run;
   FrameRange range;
-  std::unique_ptr<OdometryFlags> odometry_flags;
+  std::unique_ptr<ConfigurationFlags> configuration_flags;
 };
 
 // Keeps the poses in memory for --plot, stamped as the files are.
@@ -40,12 +39,14 @@ struct PoseRecorder : TrajectoryWriter {
 };
 
 int Run(const RunArgs& a) {
-  if (a.odometry_flags->dump_requested()) {
-    std::cout << a.odometry_flags->DumpConfig() << std::flush;
+  if (a.configuration_flags->dump_requested()) {
+    std::cout << a.configuration_flags->DumpConfig() << std::flush;
     return 0;
   }
   if (a.recording.path.empty()) throw CLI::RequiredError("recording");
-  const OdometryOptions odometry_options = a.odometry_flags->Resolve();
+  const Configuration configuration = a.configuration_flags->Resolve();
+  const OdometryOptions& odometry_options = configuration.odometry;
+  const RunOptions& run_options = configuration.run;
   RecordingArgs recording_args = a.recording;
   recording_args.source.tum.accelerometer = recording_args.source.fakenect.accelerometer =
       odometry_options.NeedsAccelerometer();
@@ -67,7 +68,7 @@ int Run(const RunArgs& a) {
 
   if (!a.quiet) {
     PrintConfiguration(info, source->Describe(), recording.calib_source, calib, odometry_options,
-                       a.run);
+                       run_options);
     info << std::flush;
   }
   LimitOpenCvThreads();
@@ -83,7 +84,7 @@ int Run(const RunArgs& a) {
         status.Update(r);
         DelayFrame(a.frame_delay_ms);
       },
-      a.run, PrintWarning(status.redrawn()));
+      run_options, PrintWarning(status.redrawn()));
   status.Finish();
   info << summary.Brief() << std::endl;
   if (const std::string model = MotionModelSummary(odometry, summary); !model.empty())
@@ -130,10 +131,9 @@ void AddRunCommand(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--plot", args->plot, "PNG of the path after the run (with ground truth if any)");
   cmd->add_flag("--quiet", args->quiet, "print only the summary line");
-  AddThreadsFlag(cmd, &args->run);
   cmd->add_flag("--timing", args->timing, "also print milliseconds per frame for each stage");
   AddFrameDelayFlag(cmd, &args->frame_delay_ms);
-  args->odometry_flags = std::make_unique<OdometryFlags>(cmd);
+  args->configuration_flags = std::make_unique<ConfigurationFlags>(cmd, RunOptions{});
   cmd->callback([args] {
     const int code = Run(*args);
     if (code != 0) throw CLI::RuntimeError(code);

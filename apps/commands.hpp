@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "odometry_flags.hpp"
+#include "configuration_flags.hpp"
 
 namespace rgbdvo::cli {
 

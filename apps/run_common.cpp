@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "rgbdvo/pipeline/run_parameters.hpp"
+
 namespace rgbdvo::cli {
 
 void TrajectoryOutputs::AddFlags(CLI::App* cmd) {
@@ -80,21 +82,6 @@ void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) con
           same(*outputs[i].first, *outputs[j].first))
         throw std::runtime_error(*outputs[i].first + ": given for both " + outputs[i].second +
                                  " and " + outputs[j].second);
-}
-
-void AddThreadsFlag(CLI::App* cmd, RunOptions* options) {
-  cmd->add_option("--threads", options->threads,
-                  "1 = everything on one core (OpenCV's loops too); N >= 2 = N feature workers "
-                  "(decode, and SIFT with --no-track) while the main thread matches, estimates "
-                  "and writes in frame order (same results); 0 = automatic: the hardware "
-                  "concurrency, at most " +
-                      std::to_string(RunOptions::kMaxAutoThreads))
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--parallel-keyframe-sift", options->parallel_keyframe_sift,
-                "with --threads 2 or more and tracking: run a new keyframe's SIFT and the frame "
-                "before's side by side (shorter keyframe frames; more CPU where the two cores "
-                "slow each other; same results)");
 }
 
 void LimitOpenCvThreads() {
@@ -205,7 +192,7 @@ void PrintConfiguration(std::ostream& out, const std::string& source, const std:
   out << " fx=" << calib.fx << " fy=" << calib.fy << " cx=" << calib.cx << " cy=" << calib.cy
       << " depth=[" << calib.min_depth_m << "," << calib.max_depth_m
       << "] m\n# threads: " << run.Describe() << "\n";
-  std::istringstream config(options.ToString());
+  std::istringstream config(ConfigurationText(options, run));
   for (std::string line; std::getline(config, line);) out << "# " << line << "\n";
 }
 

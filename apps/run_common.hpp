@@ -35,8 +35,6 @@ struct TrajectoryOutputs {
 // --pairing into *pairing ("nearest" or "one-to-one", as ParsePairing takes it).
 void AddPairingFlag(CLI::App* cmd, std::string* pairing);
 
-// --threads into options->threads.
-void AddThreadsFlag(CLI::App* cmd, RunOptions* options);
 // Turns OpenCV's own parallel loops off: our threads (one, or the feature workers) are the
 // parallelism.
 void LimitOpenCvThreads();

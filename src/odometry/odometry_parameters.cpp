@@ -225,14 +225,7 @@ const std::vector<std::pair<FloorSource, const char*>>& EnumNames<FloorSource>()
   return names;
 }
 
-bool OdometryParameter::IsBool() const {
-  O o;
-  return std::holds_alternative<bool*>(field(o));
-}
-
-std::string OdometryParameter::Get(const OdometryOptions& options) const {
-  // `field` only names the member; nothing is written through it here, so no copy is needed.
-  O& named = const_cast<O&>(options);
+std::string FormatParameter(ParameterRef field) {
   std::ostringstream s;
   s.precision(15);
   std::visit(
@@ -245,11 +238,11 @@ std::string OdometryParameter::Get(const OdometryOptions& options) const {
         else
           s << *value;
       },
-      field(named));
+      field);
   return s.str();
 }
 
-void OdometryParameter::Set(const std::string& text, OdometryOptions* options) const {
+void ParseParameter(const char* key, const std::string& text, ParameterRef field) {
   const std::string value = Trim(text);
   const auto bad = [&](const std::string& what) {
     return std::invalid_argument(std::string(key) + ": '" + value + "' is not " + what);
@@ -292,7 +285,7 @@ void OdometryParameter::Set(const std::string& text, OdometryOptions* options) c
           }
         }
       },
-      field(*options));
+      field);
 }
 
 const std::vector<OdometryParameter>& OdometryParameters() { return kParameters; }
@@ -353,7 +346,9 @@ bool RetiredAtItsDefault(const std::string& key, const std::string& value,
 
 }  // namespace
 
-void ApplyConfig(std::istream& in, const std::string& name, OdometryOptions* options) {
+void ApplyConfig(
+    std::istream& in, const std::string& name, OdometryOptions* options,
+    const std::function<bool(const std::string& key, const std::string& value)>& other) {
   int number = 0;
   for (std::string line; std::getline(in, line);) {
     ++number;
@@ -365,11 +360,12 @@ void ApplyConfig(std::istream& in, const std::string& name, OdometryOptions* opt
       throw std::runtime_error(where + ": expected 'key = value', got '" + content + "'");
     const std::string key = CurrentKey(Trim(content.substr(0, eq)));
     if (RetiredAtItsDefault(key, Trim(content.substr(eq + 1)), where)) continue;
-    const OdometryParameter* p = FindParameter(key);
-    if (!p)
-      throw std::runtime_error(where + ": unknown parameter '" + key +
-                               "' (`rgbdvo run --dump-config` lists them)");
     try {
+      if (other && other(key, content.substr(eq + 1))) continue;
+      const OdometryParameter* p = FindParameter(key);
+      if (!p)
+        throw std::runtime_error(where + ": unknown parameter '" + key +
+                                 "' (`rgbdvo run --dump-config` lists them)");
       p->Set(content.substr(eq + 1), options);
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(where + ": " + e.what());
@@ -378,10 +374,12 @@ void ApplyConfig(std::istream& in, const std::string& name, OdometryOptions* opt
   if (in.bad()) throw std::runtime_error(name + ": read error");
 }
 
-void ApplyConfigFile(const std::string& path, OdometryOptions* options) {
+void ApplyConfigFile(
+    const std::string& path, OdometryOptions* options,
+    const std::function<bool(const std::string& key, const std::string& value)>& other) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the configuration file");
-  ApplyConfig(in, path, options);
+  ApplyConfig(in, path, options, other);
 }
 
 }  // namespace rgbdvo

@@ -154,8 +154,8 @@ class FeatureWorkers {
 }  // namespace
 
 void RunOptions::Check() const {
-  if (threads < 0) throw std::invalid_argument("RunOptions.threads must be >= 0 (0 = automatic)");
-  if (queue_frames < 1) throw std::invalid_argument("RunOptions.queue_frames must be >= 1");
+  if (threads < 0) throw std::invalid_argument("run.threads must be >= 0 (0 = automatic)");
+  if (queue_frames < 1) throw std::invalid_argument("run.queue_frames must be >= 1");
 }
 
 int RunOptions::EffectiveThreads() const {

@@ -418,6 +418,13 @@ TEST_CASE("rgbdvo run --dump-config prints what --config reads, after preset, fi
                       Catch::Contains("matching.ratio = 0.7") &&
                       Catch::Contains("matching.mutual = false") &&
                       Catch::Contains("features.upsample_first_octave = false"));
+  // The run's parameters are in the same file, and their flags apply on top of it too.
+  std::ofstream(dir + "/threads.cfg") << "run.threads = 3\nrun.queue_frames = 5\n";
+  REQUIRE(RunCommand(RgbdvoExe() + " run --dump-config --config " + dir +
+                         "/threads.cfg --threads 2 --parallel-keyframe-sift",
+                     &out) == 0);
+  CHECK_THAT(out, Catch::Contains("run.threads = 2") && Catch::Contains("run.queue_frames = 5") &&
+                      Catch::Contains("run.parallel_keyframe_sift = true"));
 
   // The dumped paper configuration runs exactly as --preset paper.
   const std::string data = SourceDir() + "/data/tum_fr1_xyz_first30",
@@ -441,6 +448,8 @@ TEST_CASE("rgbdvo run: bad flag values are usage errors, bad configuration files
   CHECK(RunCommand(RgbdvoExe() + " run --dump-config --ratio abc", &out) == 2);
   CHECK_THAT(out, Catch::Contains("matching.ratio"));
   CHECK(RunCommand(RgbdvoExe() + " run --dump-config --mutual --no-mutual", &out) == 2);
+  CHECK(RunCommand(RgbdvoExe() + " run --dump-config --threads two", &out) == 2);
+  CHECK_THAT(out, Catch::Contains("run.threads"));
   CHECK(RunCommand(RgbdvoExe() + " run --calib tum_fr1", &out) == 2);  // no recording
   CHECK_THAT(out, Catch::Contains("recording"));
   std::ofstream(dir + "/bad.cfg") << "ransac.max_trials = 50\nransac.trails = 5\n";

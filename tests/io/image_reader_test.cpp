@@ -93,12 +93,13 @@ std::vector<uint8_t> HandMadePng(const std::vector<uint8_t>& samples, int width,
   std::vector<uint8_t> filtered;
   for (int y = 0; y < height; ++y) {
     const uint8_t* cur = &samples[y * line];
+    const uint8_t* up = y > 0 ? &samples[(y - 1) * line] : nullptr;
     const int type = y % 5;
     filtered.push_back(static_cast<uint8_t>(type));
     for (size_t i = 0; i < line; ++i) {
       const int a = i >= size_t(bpp) ? cur[i - bpp] : 0;
-      const int b = y > 0 ? cur[i - line] : 0;
-      const int c = y > 0 && i >= size_t(bpp) ? cur[i - line - bpp] : 0;
+      const int b = up ? up[i] : 0;
+      const int c = up && i >= size_t(bpp) ? up[i - bpp] : 0;
       const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
       const int paeth = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
       const int pred[5] = {0, a, b, (a + b) / 2, paeth};

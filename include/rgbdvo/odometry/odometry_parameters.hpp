@@ -2,9 +2,11 @@
 // Every parameter of OdometryOptions, declared once: its key (in the printed configuration and
 // in configuration files), its command-line flag and its help. The configuration printout
 // (OdometryOptions::ToString), configuration files (--config, --dump-config) and the CLI flags
-// are all made from this one list, so they cannot disagree.
+// are all made from this one list, so they cannot disagree. The run's own options (threads) are
+// declared the same way (pipeline/run_parameters.hpp).
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <utility>
@@ -15,24 +17,38 @@
 
 namespace rgbdvo {
 
-// Where a parameter lives in an OdometryOptions. An enum's values are written by name
+// Where a parameter lives in its options struct. An enum's values are written by name
 // (EnumNames in odometry_parameters.cpp).
 using ParameterRef = std::variant<bool*, int*, uint32_t*, double*, SiftImplementation*,
                                   MotionModelKind*, FloorSource*>;
 
-struct OdometryParameter {
-  const char* key;   // "matching.ratio": the field's path in OdometryOptions
+// The value at `field` as configuration text (true/false for booleans).
+std::string FormatParameter(ParameterRef field);
+// Parses `text` into `field`. Throws std::invalid_argument naming `key` and the text when it is
+// not a value of the field's type (booleans: true/false/1/0/yes/no/on/off).
+void ParseParameter(const char* key, const std::string& text, ParameterRef field);
+
+template <typename Options>
+struct Parameter {
+  const char* key;   // "matching.ratio": the field's path in Options
   const char* flag;  // "ratio": --ratio VALUE; a boolean has --NAME and --no-NAME
   const char* help;
-  ParameterRef (*field)(OdometryOptions&);
+  ParameterRef (*field)(Options&);
 
-  bool IsBool() const;
-  // The value in `options` as configuration text (true/false for booleans).
-  std::string Get(const OdometryOptions& options) const;
-  // Parses `text` into `options`. Throws std::invalid_argument naming the key and the text when
-  // it is not a value of the parameter's type (booleans: true/false/1/0/yes/no/on/off).
-  void Set(const std::string& text, OdometryOptions* options) const;
+  bool IsBool() const {
+    Options o;
+    return std::holds_alternative<bool*>(field(o));
+  }
+  // The value in `options` as configuration text.
+  std::string Get(const Options& options) const {
+    // `field` only names the member; nothing is written through it here.
+    return FormatParameter(field(const_cast<Options&>(options)));
+  }
+  void Set(const std::string& text, Options* options) const {
+    ParseParameter(key, text, field(*options));
+  }
 };
+using OdometryParameter = Parameter<OdometryOptions>;
 
 // The names an enum parameter is written with, in its enumerators' order.
 template <typename E>
@@ -51,8 +67,14 @@ const OdometryParameter* FindParameter(const std::string& key);
 // overrides `options`' in file order. Throws std::runtime_error naming `name` and the line for an
 // unknown key, a line without '=', or a bad value; the file as a whole is checked afterwards by
 // OdometryOptions::Check().
-void ApplyConfig(std::istream& in, const std::string& name, OdometryOptions* options);
+// `other` (may be empty) is asked first for each key and value: it returns true when the key is
+// its own (another table's, pipeline/run_parameters.hpp) and it has applied the value.
+void ApplyConfig(
+    std::istream& in, const std::string& name, OdometryOptions* options,
+    const std::function<bool(const std::string& key, const std::string& value)>& other = {});
 // The same from a file; throws std::runtime_error naming it when it cannot be read.
-void ApplyConfigFile(const std::string& path, OdometryOptions* options);
+void ApplyConfigFile(
+    const std::string& path, OdometryOptions* options,
+    const std::function<bool(const std::string& key, const std::string& value)>& other = {});
 
 }  // namespace rgbdvo

@@ -12,13 +12,13 @@ namespace rgbdvo {
 namespace {
 
 // 8 floats, GCC/Clang vector extension: one AVX register where the CPU has them, two SSE
-// registers otherwise. Loads and stores go through memcpy (no alignment needed).
+// registers otherwise. Loaded through a type of any alignment that may alias the floats; never
+// passed by value between functions, since the AVX2 clone and the baseline would pass it in
+// different registers (clang refuses such calls).
 typedef float v8f __attribute__((vector_size(32)));
-inline v8f Load(const float* p) {
-  v8f v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
+typedef float v8f_unaligned __attribute__((vector_size(32), aligned(4), may_alias));
+// The 8 floats at p, read as `*At(p)`.
+inline const v8f_unaligned* At(const float* p) { return reinterpret_cast<const v8f_unaligned*>(p); }
 inline void Store(float* p, const v8f& v) { std::memcpy(p, &v, sizeof v); }
 
 // Index i of a row or column of n reflected without repeating the edge: -1 -> 1, n -> n - 2.
@@ -33,14 +33,13 @@ RGBDVO_SIMD_CLONES void BlurRow(const float* in, float* out, int cols, const flo
   int x = 0;
   for (; x + 32 <= cols; x += 32) {  // 4 accumulators: fewer loads of k per output
     const float* p = in + x;
-    v8f a = k[0] * Load(p), b = k[0] * Load(p + 8), c = k[0] * Load(p + 16),
-        d = k[0] * Load(p + 24);
+    v8f a = k[0] * *At(p), b = k[0] * *At(p + 8), c = k[0] * *At(p + 16), d = k[0] * *At(p + 24);
     for (int j = 1; j <= r; ++j) {
       const float kj = k[j];
-      a += kj * (Load(p - j) + Load(p + j));
-      b += kj * (Load(p + 8 - j) + Load(p + 8 + j));
-      c += kj * (Load(p + 16 - j) + Load(p + 16 + j));
-      d += kj * (Load(p + 24 - j) + Load(p + 24 + j));
+      a += kj * (*At(p - j) + *At(p + j));
+      b += kj * (*At(p + 8 - j) + *At(p + 8 + j));
+      c += kj * (*At(p + 16 - j) + *At(p + 16 + j));
+      d += kj * (*At(p + 24 - j) + *At(p + 24 + j));
     }
     Store(out + x, a);
     Store(out + x + 8, b);
@@ -60,26 +59,26 @@ RGBDVO_SIMD_CLONES void BlurColumns(const float* const* rows, float* out, const 
   const float* centre = rows[r];
   int x = 0;
   for (; x + 32 <= cols; x += 32) {  // 4 accumulators: fewer loads of k and row pointers
-    v8f a = k[0] * Load(centre + x), b = k[0] * Load(centre + x + 8),
-        c = k[0] * Load(centre + x + 16), d = k[0] * Load(centre + x + 24);
+    v8f a = k[0] * *At(centre + x), b = k[0] * *At(centre + x + 8), c = k[0] * *At(centre + x + 16),
+        d = k[0] * *At(centre + x + 24);
     for (int j = 1; j <= r; ++j) {
       const float kj = k[j];
       const float* up = rows[r - j] + x;
       const float* down = rows[r + j] + x;
-      a += kj * (Load(up) + Load(down));
-      b += kj * (Load(up + 8) + Load(down + 8));
-      c += kj * (Load(up + 16) + Load(down + 16));
-      d += kj * (Load(up + 24) + Load(down + 24));
+      a += kj * (*At(up) + *At(down));
+      b += kj * (*At(up + 8) + *At(down + 8));
+      c += kj * (*At(up + 16) + *At(down + 16));
+      d += kj * (*At(up + 24) + *At(down + 24));
     }
     Store(out + x, a);
     Store(out + x + 8, b);
     Store(out + x + 16, c);
     Store(out + x + 24, d);
     if (diff) {
-      Store(diff + x, a - Load(src + x));
-      Store(diff + x + 8, b - Load(src + x + 8));
-      Store(diff + x + 16, c - Load(src + x + 16));
-      Store(diff + x + 24, d - Load(src + x + 24));
+      Store(diff + x, a - *At(src + x));
+      Store(diff + x + 8, b - *At(src + x + 8));
+      Store(diff + x + 16, c - *At(src + x + 16));
+      Store(diff + x + 24, d - *At(src + x + 24));
     }
   }
   for (; x < cols; ++x) {
@@ -102,24 +101,24 @@ RGBDVO_SIMD_CLONES void BlurColumns2(const float* const* rows, float* out0, floa
   const float* c1 = rows[r + 1];
   int x = 0;
   for (; x + 32 <= cols; x += 32) {  // 4 accumulators per output row
-    v8f a = k[0] * Load(c0 + x), b = k[0] * Load(c0 + x + 8), c = k[0] * Load(c0 + x + 16),
-        d = k[0] * Load(c0 + x + 24);
-    v8f e = k[0] * Load(c1 + x), f = k[0] * Load(c1 + x + 8), g = k[0] * Load(c1 + x + 16),
-        h = k[0] * Load(c1 + x + 24);
+    v8f a = k[0] * *At(c0 + x), b = k[0] * *At(c0 + x + 8), c = k[0] * *At(c0 + x + 16),
+        d = k[0] * *At(c0 + x + 24);
+    v8f e = k[0] * *At(c1 + x), f = k[0] * *At(c1 + x + 8), g = k[0] * *At(c1 + x + 16),
+        h = k[0] * *At(c1 + x + 24);
     for (int j = 1; j <= r; ++j) {
       const float kj = k[j];
       const float* up0 = rows[r - j] + x;
       const float* down0 = rows[r + j] + x;
       const float* up1 = rows[r + 1 - j] + x;
       const float* down1 = rows[r + 1 + j] + x;
-      a += kj * (Load(up0) + Load(down0));
-      b += kj * (Load(up0 + 8) + Load(down0 + 8));
-      c += kj * (Load(up0 + 16) + Load(down0 + 16));
-      d += kj * (Load(up0 + 24) + Load(down0 + 24));
-      e += kj * (Load(up1) + Load(down1));
-      f += kj * (Load(up1 + 8) + Load(down1 + 8));
-      g += kj * (Load(up1 + 16) + Load(down1 + 16));
-      h += kj * (Load(up1 + 24) + Load(down1 + 24));
+      a += kj * (*At(up0) + *At(down0));
+      b += kj * (*At(up0 + 8) + *At(down0 + 8));
+      c += kj * (*At(up0 + 16) + *At(down0 + 16));
+      d += kj * (*At(up0 + 24) + *At(down0 + 24));
+      e += kj * (*At(up1) + *At(down1));
+      f += kj * (*At(up1 + 8) + *At(down1 + 8));
+      g += kj * (*At(up1 + 16) + *At(down1 + 16));
+      h += kj * (*At(up1 + 24) + *At(down1 + 24));
     }
     Store(out0 + x, a);
     Store(out0 + x + 8, b);
@@ -130,14 +129,14 @@ RGBDVO_SIMD_CLONES void BlurColumns2(const float* const* rows, float* out0, floa
     Store(out1 + x + 16, g);
     Store(out1 + x + 24, h);
     if (diff0) {
-      Store(diff0 + x, a - Load(src0 + x));
-      Store(diff0 + x + 8, b - Load(src0 + x + 8));
-      Store(diff0 + x + 16, c - Load(src0 + x + 16));
-      Store(diff0 + x + 24, d - Load(src0 + x + 24));
-      Store(diff1 + x, e - Load(src1 + x));
-      Store(diff1 + x + 8, f - Load(src1 + x + 8));
-      Store(diff1 + x + 16, g - Load(src1 + x + 16));
-      Store(diff1 + x + 24, h - Load(src1 + x + 24));
+      Store(diff0 + x, a - *At(src0 + x));
+      Store(diff0 + x + 8, b - *At(src0 + x + 8));
+      Store(diff0 + x + 16, c - *At(src0 + x + 16));
+      Store(diff0 + x + 24, d - *At(src0 + x + 24));
+      Store(diff1 + x, e - *At(src1 + x));
+      Store(diff1 + x + 8, f - *At(src1 + x + 8));
+      Store(diff1 + x + 16, g - *At(src1 + x + 16));
+      Store(diff1 + x + 24, h - *At(src1 + x + 24));
     }
   }
   for (; x < cols; ++x) {

@@ -1,6 +1,7 @@
 #include "rgbdvo/features/sift/sift_descriptor.hpp"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -10,8 +11,12 @@ namespace rgbdvo {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-// 8 floats / ints, GCC/Clang vector extension: one AVX register where the CPU has them.
+// 8 floats / ints, GCC/Clang vector extension: one AVX register where the CPU has them. The
+// 8-lane vectors are never passed by value between functions: the AVX2 clone and the baseline
+// would pass them in different registers (clang refuses such calls), so helpers take and give
+// them by address.
 typedef float v8f __attribute__((vector_size(32)));
+typedef float v8f_unaligned __attribute__((vector_size(32), aligned(4), may_alias));
 typedef int v8i __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
 typedef int v4i __attribute__((vector_size(16)));
@@ -75,28 +80,25 @@ const Grid& TheGrid() {
   return grid;
 }
 
-inline v8f Load(const float* p) {
-  v8f v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
+// The 8 floats at p, read as `*At(p)`.
+inline const v8f_unaligned* At(const float* p) { return reinterpret_cast<const v8f_unaligned*>(p); }
 
 // p[0] in lanes 0-3, p[1] in lanes 4-7.
 // (The pair is loaded as one 64-bit value: one load into a register, where GCC builds a short
 // vector through the stack.)
-inline v8i Spread(const void* p) {
+inline void Spread(const void* p, v8i* out) {
   int64_t pair;
   std::memcpy(&pair, p, sizeof pair);
   const v4i two = (v4i)v2l{pair, 0};
-  return __builtin_shufflevector(two, two, 0, 0, 0, 0, 1, 1, 1, 1);
+  *out = __builtin_shufflevector(two, two, 0, 0, 0, 0, 1, 1, 1, 1);
 }
 
 // Four floats from p in lanes 0-3 and four from q in lanes 4-7.
-inline v8f Pair(const float* p, const float* q) {
+inline void Pair(const float* p, const float* q, v8f* out) {
   v4f lo, hi;
   std::memcpy(&lo, p, sizeof lo);
   std::memcpy(&hi, q, sizeof hi);
-  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+  *out = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
 // For TwoLanes, per lane o: with GCC, where each lane of (a, b, 0, ...) goes (a to lane o, b to
@@ -120,11 +122,11 @@ const std::array<v8i, kBins> kLaneMask = [] {
 // An 8-lane vector with a in lane o, b in lane o + 1 (mod 8) and 0 elsewhere: with GCC one
 // permutation of (a, b, 0, ...) (vpermps where the CPU has AVX2); elsewhere (a shuffle by a
 // variable mask is GCC's) the two lanes' masks, two ands and an addition. The same values.
-inline v8f TwoLanes(int o, float a, float b) {
+inline void TwoLanes(int o, float a, float b, v8f* out) {
 #if defined(__GNUC__) && !defined(__clang__)
-  return __builtin_shuffle(v8f{a, b, 0, 0, 0, 0, 0, 0}, kRoute[o]);
+  *out = __builtin_shuffle(v8f{a, b, 0, 0, 0, 0, 0, 0}, kRoute[o]);
 #else
-  return (v8f)(kLaneMask[o] & (v8i)(v8f{} + a)) +
+  *out = (v8f)(kLaneMask[o] & (v8i)(v8f{} + a)) +
          (v8f)(kLaneMask[(o + 1) & (kBins - 1)] & (v8i)(v8f{} + b));
 #endif
 }
@@ -144,7 +146,7 @@ RGBDVO_SIMD_CLONES float OrientationHistogram(const cv::Mat& level, int x, int y
   for (int i = -radius; i <= radius; ++i) w[i + radius] = std::exp(i * i * scale);
   float mag[2 * kMaxRadius + 1], bin[2 * kMaxRadius + 1];
   const float to_bin = n / (2 * kPi);
-  const size_t step = level.step1();
+  const ptrdiff_t step = static_cast<ptrdiff_t>(level.step1());
   // Ask for the window's rows (and the one above and below it) up front: the loop below waits
   // on the first read of each new row otherwise.
   {
@@ -162,7 +164,7 @@ RGBDVO_SIMD_CLONES float OrientationHistogram(const cv::Mat& level, int x, int y
     const int j0 = std::max(-radius, 1 - x), j1 = std::min(radius, level.cols - 2 - x);
     const int len = j1 - j0 + 1;
     const float* row = level.ptr<float>(yy) + x + j0;
-    const float* wj = w + j0 + radius;
+    const float* wj = w + (j0 + radius);
     const float wi = w[i + radius];
     // Gradients of the row's samples, vectorisable; then the histogram, scalar.
     for (int j = 0; j < len; ++j) {
@@ -231,8 +233,11 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
   for (int s = 0; s < kSamples; s += 2) {
     const float* p = data + at[s] - 1;
     const float* q = data + at[s + 1] - 1;
-    const v8f m = Pair(p - step, q - step), a = Pair(p, q), b = Pair(p + step, q + step),
-              c = Pair(p + 2 * step, q + 2 * step);
+    v8f m, a, b, c;
+    Pair(p - step, q - step, &m);
+    Pair(p, q, &a);
+    Pair(p + step, q + step, &b);
+    Pair(p + 2 * step, q + 2 * step, &c);
     // (gx00, gx01, gx10, gx11): I(x + 1) - I(x - 1) on rows y0 and y0 + 1.
     const v8f gx = __builtin_shufflevector(a, b, 2, 3, 10, 11, 6, 7, 14, 15) -
                    __builtin_shufflevector(a, b, 0, 1, 8, 9, 4, 5, 12, 13);
@@ -241,13 +246,17 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
     // Columns x0 (left) and x0 + 1 (right) of (gx row y0, gx row y0 + 1, gy ..., gy ...).
     const v8f left = __builtin_shufflevector(gx, gy, 0, 2, 8, 10, 4, 6, 12, 14);
     const v8f right = __builtin_shufflevector(gx, gy, 1, 3, 9, 11, 5, 7, 13, 15);
-    const v8f fx = (v8f)Spread(fxs + s);
+    v8i fxi, fyi, maski;
+    Spread(fxs + s, &fxi);
+    Spread(fys + s, &fyi);
+    Spread(mask + s, &maski);
+    const v8f fx = (v8f)fxi;
     const v8f g = left + fx * (right - left);  // (gx0, gx1, gy0, gy1) of each sample
     const v8f g0 = __builtin_shufflevector(g, g, 0, 2, 0, 2, 4, 6, 4, 6);
     const v8f g1 = __builtin_shufflevector(g, g, 1, 3, 1, 3, 5, 7, 5, 7);
-    const v8f fy = (v8f)Spread(fys + s);
+    const v8f fy = (v8f)fyi;
     // (dx, dy, dx, dy) of each sample, or 0.
-    const v8f d = (v8f)((v8i)(g0 + fy * (g1 - g0)) & Spread(mask + s));
+    const v8f d = (v8f)((v8i)(g0 + fy * (g1 - g0)) & maski);
     // (dx, dx', dy, dy'): each pair stored with one move.
     const v4f out = __builtin_shufflevector(d, d, 0, 4, 1, 5);
     float pairs[4];
@@ -277,7 +286,8 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
   //    b) Lane o0 gets share0, lane o0 + 1 (mod 8) share1, the others 0 (TwoLanes).
   float split[kSamples][kBins];
   for (int s = 0; s < kSamples; ++s) {
-    const v8f v = TwoLanes(lower[s], share0[s], share1[s]);
+    v8f v;
+    TwoLanes(lower[s], share0[s], share1[s], &v);
     std::memcpy(split[s], &v, sizeof v);
   }
   float hist[kWidth * kWidth * kBins];
@@ -289,8 +299,8 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
       const float* row = split[(kPerBin * br + i / kSpan) * kGrid + i % kSpan];
       for (int bc = 0; bc < kWidth; ++bc) {
         const std::array<float, kSpan* kSpan>& w = grid.splat[br * kWidth + bc];
-        even[bc] += w[i] * Load(row + kPerBin * bc * kBins);
-        odd[bc] += w[i + 1] * Load(row + (kPerBin * bc + 1) * kBins);
+        even[bc] += w[i] * *At(row + kPerBin * bc * kBins);
+        odd[bc] += w[i + 1] * *At(row + (kPerBin * bc + 1) * kBins);
       }
     }
     for (int bc = 0; bc < kWidth; ++bc) {
@@ -305,7 +315,7 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
   const auto norm_sq = [&hist] {
     v8f sum = {};
     for (int k = 0; k < kSiftDescriptorSize; k += kBins) {
-      const v8f v = Load(hist + k);
+      const v8f v = *At(hist + k);
       sum += v * v;
     }
     return ((sum[0] + sum[4]) + (sum[1] + sum[5])) + ((sum[2] + sum[6]) + (sum[3] + sum[7]));
