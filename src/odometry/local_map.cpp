@@ -50,13 +50,16 @@ void LocalMap::Clear() {
   points_.clear();
 }
 
-Rigid3d LocalMap::AddKeyframe(const Reference& key) {
+Rigid3d LocalMap::AddKeyframe(const Reference& key, const KeyframeMatches& matches) {
   if (key.features.descriptors.cols != kDescriptorBytes || key.features.descriptors.type() != CV_8U)
     throw std::invalid_argument("LocalMap: SIFT descriptors expected (128 bytes each)");
   Keyframe kf;
   kf.id = next_keyframe_++;
+  kf.frame = key.frame;
   kf.world_from_cam = key.world_from_cam;
-  const std::map<int64_t, int> seen = Associate(key);
+  kf.point_of_keypoint.assign(key.points.size(), -1);
+  std::map<int64_t, int> seen = FromMatches(key, matches);
+  Associate(key, &seen);
   const std::vector<double> depth_sigmas = DepthSigmas(key);
   std::vector<bool> used(key.points.size(), false);
   for (const auto& [id, i] : seen) {
@@ -64,6 +67,7 @@ Rigid3d LocalMap::AddKeyframe(const Reference& key) {
     p.observations.push_back({kf.id, *key.points[i], depth_sigmas[i]});
     std::copy_n(key.features.descriptors.ptr<uint8_t>(i), kDescriptorBytes, p.descriptor.begin());
     kf.points.push_back(id);
+    kf.point_of_keypoint[i] = id;
     used[i] = true;
   }
   for (size_t i = 0; i < key.points.size(); ++i) {
@@ -75,6 +79,7 @@ Rigid3d LocalMap::AddKeyframe(const Reference& key) {
     p.first_keyframe = kf.id;
     p.observations.push_back({kf.id, *key.points[i], depth_sigmas[i]});
     kf.points.push_back(next_point_);
+    kf.point_of_keypoint[i] = next_point_;
     points_.emplace(next_point_++, std::move(p));
   }
   keyframes_.push_back(std::move(kf));
@@ -108,7 +113,24 @@ std::vector<double> LocalMap::DepthSigmas(const Reference& key) const {
   return sigmas;
 }
 
-std::map<int64_t, int> LocalMap::Associate(const Reference& key) const {
+std::map<int64_t, int> LocalMap::FromMatches(const Reference& key,
+                                             const KeyframeMatches& matches) const {
+  std::map<int64_t, int> seen;
+  if (keyframes_.empty() || keyframes_.back().frame != matches.keyframe_frame) return seen;
+  const Keyframe& before = keyframes_.back();
+  std::set<int> taken;
+  for (const auto& [from, to] : matches.pairs) {
+    if (from < 0 || static_cast<size_t>(from) >= before.point_of_keypoint.size()) continue;
+    if (to < 0 || static_cast<size_t>(to) >= key.points.size() || !key.points[to]) continue;
+    const int64_t id = before.point_of_keypoint[from];
+    if (id < 0 || points_.count(id) == 0 || seen.count(id) > 0 || !taken.insert(to).second)
+      continue;
+    seen[id] = to;
+  }
+  return seen;
+}
+
+void LocalMap::Associate(const Reference& key, std::map<int64_t, int>* seen) const {
   // Where a map point projects, the keypoints within the search radius whose depth agrees as
   // closely as the radius allows sideways (plus the depth noise); the nearest descriptor wins
   // if it passes the ratio test, and a keypoint keeps the map point nearest to it in descriptor.
@@ -124,7 +146,10 @@ std::map<int64_t, int> LocalMap::Associate(const Reference& key) const {
   const Rigid3d cam_from_world = key.world_from_cam.inverse();
   std::vector<std::pair<int, int64_t>> best_of_keypoint(key.points.size(),
                                                         {std::numeric_limits<int>::max(), -1});
+  std::vector<bool> taken(key.points.size(), false);
+  for (const auto& [id, i] : *seen) taken[i] = true;
   for (const auto& [id, point] : points_) {
+    if (seen->count(id) > 0) continue;
     const Eigen::Vector3d q = cam_from_world * point.world;
     if (q.z() <= 0) continue;
     const double u = f * q.x() / q.z();
@@ -138,6 +163,7 @@ std::map<int64_t, int> LocalMap::Associate(const Reference& key) const {
         const auto cell = grid.find(CellKey(u + dx * radius, v + dy * radius, radius));
         if (cell == grid.end()) continue;
         for (const int i : cell->second) {
+          if (taken[i]) continue;
           const Eigen::Vector3d& p = *key.points[i];
           const double du = f * p.x() / p.z() - u;
           const double dv = f * p.y() / p.z() - v;
@@ -158,10 +184,8 @@ std::map<int64_t, int> LocalMap::Associate(const Reference& key) const {
     if (best_i < 0 || !(best < ratio2 * second)) continue;
     if (best < best_of_keypoint[best_i].first) best_of_keypoint[best_i] = {best, id};
   }
-  std::map<int64_t, int> seen;
   for (size_t i = 0; i < best_of_keypoint.size(); ++i)
-    if (best_of_keypoint[i].second >= 0) seen[best_of_keypoint[i].second] = static_cast<int>(i);
-  return seen;
+    if (best_of_keypoint[i].second >= 0) (*seen)[best_of_keypoint[i].second] = static_cast<int>(i);
 }
 
 std::vector<int64_t> LocalMap::Window() const {

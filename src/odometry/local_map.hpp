@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "reference.hpp"
@@ -17,16 +18,24 @@
 
 namespace rgbdvo {
 
+// A new keyframe's verified SIFT matches to the keyframe before it: (that keyframe's keypoint,
+// the new one's), the inliers of the estimate that placed it.
+struct KeyframeMatches {
+  int keyframe_frame = -1;  // the frame number of the keyframe matched against
+  std::vector<std::pair<int, int>> pairs;
+};
+
 class LocalMap {
  public:
   // focal_px: the depth camera's focal length (the residuals in pixels).
   LocalMap(const OdometryOptions& options, const Calibration& calib);
 
-  // Adds a new keyframe (with its features and their 3D points) at key.world_from_cam: each map
-  // point it sees near where the point projects, by descriptor, gains an observation; its other
+  // Adds a new keyframe (with its features and their 3D points) at key.world_from_cam: the map
+  // points of the keyframe before that `matches` pair with its keypoints, then each other map
+  // point it sees near where the point projects, by descriptor, gain an observation; its other
   // keypoints with a 3D point become map points. Then the keyframes sharing the most points
   // with it are adjusted with the points they see. Returns the keyframe's adjusted pose.
-  Rigid3d AddKeyframe(const Reference& key);
+  Rigid3d AddKeyframe(const Reference& key, const KeyframeMatches& matches = {});
   // Forgets everything (a restart: the new reference's pose is only a prediction).
   void Clear();
 
@@ -47,16 +56,21 @@ class LocalMap {
   };
   struct Keyframe {
     int64_t id = 0;
+    int frame = -1;
     Rigid3d world_from_cam;
-    std::vector<int64_t> points;  // the map points it observes
+    std::vector<int64_t> points;             // the map points it observes
+    std::vector<int64_t> point_of_keypoint;  // the map point each keypoint observes, or -1
   };
 
   // The sigma of each keypoint's depth: the Kinect's noise, and the depth's change over the
   // keypoint's localisation noise (a slope or an edge under the keypoint).
   std::vector<double> DepthSigmas(const Reference& key) const;
-  // The keyframe's keypoint each map point is seen as (map point id -> keypoint), by projection
-  // and descriptor.
-  std::map<int64_t, int> Associate(const Reference& key) const;
+  // The map points of the newest keyframe that `matches` pair with key's keypoints (map point
+  // id -> keypoint).
+  std::map<int64_t, int> FromMatches(const Reference& key, const KeyframeMatches& matches) const;
+  // Adds to `seen` the other map points key sees, by projection and descriptor, each as a
+  // keypoint not yet in `seen`.
+  void Associate(const Reference& key, std::map<int64_t, int>* seen) const;
   // The keyframes adjusted with the newest: those sharing the most points with it.
   std::vector<int64_t> Window() const;
   void Adjust(const std::vector<int64_t>& window);

@@ -141,6 +141,16 @@ MotionEstimate MotionMeasurer::Match(const Reference& ref, const Reference& cur,
   std::vector<int> match_of_pair;
   MotionEstimate motion = FromMatches(ref, cur, cur.points, matches, r, &match_of_pair);
   *reason = CheckMotion(options_.verify, motion);
+  // The kept estimate's inliers as keypoint pairs.
+  const auto keep_inliers = [this](const std::vector<cv::DMatch>& kept,
+                                   const std::vector<int>& kept_of_pair,
+                                   const MotionEstimate& estimate) {
+    matched_inliers_.clear();
+    for (const int k : estimate.inliers) {
+      const cv::DMatch& m = kept[kept_of_pair[k]];
+      matched_inliers_.emplace_back(m.queryIdx, m.trainIdx);
+    }
+  };
   // Brute-force matching, timed and counted as a fallback.
   const auto match_all = [&] {
     ++r->fallbacks;
@@ -157,6 +167,7 @@ MotionEstimate MotionMeasurer::Match(const Reference& ref, const Reference& cur,
     motion = FromMatches(ref, cur, cur.points, matches, r, &match_of_pair);
     *reason = CheckMotion(options_.verify, motion);
   }
+  keep_inliers(matches, match_of_pair, motion);
   r->prediction_error_px =
       PredictionErrors(predicted, matches, match_of_pair, motion, cur.features);
   // The estimate from `other` replaces `motion` if it passes verification with at least `factor`
@@ -172,6 +183,7 @@ MotionEstimate MotionMeasurer::Match(const Reference& ref, const Reference& cur,
       r->prediction_error_px =
           PredictionErrors(predicted, other, other_of_pair, estimate, cur.features);
       motion = std::move(estimate);
+      keep_inliers(other, other_of_pair, motion);
     } else {
       r->matches = kept_matches, r->pairs = kept_pairs, r->inliers = kept_inliers;
     }

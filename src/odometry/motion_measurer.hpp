@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reference.hpp"
@@ -34,6 +35,8 @@ class MotionMeasurer {
   // the prior was off (guided_rematch).
   MotionEstimate Match(const Reference& ref, const Reference& cur,
                        const Rigid3d& world_from_cur_pred, FrameResult* r, std::string* reason);
+  // The last Match's kept estimate's inliers as keypoint pairs (ref's keypoint, cur's).
+  const std::vector<std::pair<int, int>>& matched_inliers() const { return matched_inliers_; }
   // The motion ref_from_cur from ref's keypoints `tracked` (indices) tracked into cur from where
   // cur_from_ref_pred puts them (fills r's counts); ref's pyramid gets its derivatives and
   // ref keeps its tracking windows for the next frames.
@@ -61,6 +64,7 @@ class MotionMeasurer {
   std::optional<Eigen::Matrix3d> level_from_cam_;
   cv::Mat depth_rays_;
   int threads_ = 1;
+  std::vector<std::pair<int, int>> matched_inliers_;
 };
 
 }  // namespace rgbdvo

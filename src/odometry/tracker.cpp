@@ -176,6 +176,7 @@ void Tracker::Measure(Current* c) {
   c->motion = measurer_.Match(key_, c->ref, c->world_from_pred, &r, &r.reason);
   if (r.reason.empty()) {
     c->measured = Measured::kKeyframeMatches;
+    c->keyframe_matches = {key_.frame, measurer_.matched_inliers()};
     return;
   }
   if (last_.frame == key_.frame) return;
@@ -224,6 +225,7 @@ FrameResult Tracker::Accept(const Frame& frame, Current* c) {
     MotionEstimate matched = MeasureAside(key_, c, &again, &reason);
     if (reason.empty()) {
       c->motion = std::move(matched);
+      c->keyframe_matches = {key_.frame, measurer_.matched_inliers()};
       r = std::move(again);
       r.from_tracks = false;
     }
@@ -237,7 +239,7 @@ FrameResult Tracker::Accept(const Frame& frame, Current* c) {
   // The velocity is what one estimate measured: after depth-aligned frames, this estimate's own
   // from the keyframe (the last frame's pose would add the error this estimate corrects).
   Advance(std::move(cur), new_keyframe, last_.pose_from_features ? last_ : key_);
-  if (new_keyframe) AdjustWithMap(&r);
+  if (new_keyframe) AdjustWithMap(c->keyframe_matches, &r);
   r.keyframe = new_keyframe;
   CorrectTilt(frame);
   r.status = recovered ? FrameStatus::kRecovered : FrameStatus::kAccepted;
@@ -392,10 +394,10 @@ void Tracker::Restart(Reference ref) {
   }
 }
 
-void Tracker::AdjustWithMap(FrameResult* r) {
+void Tracker::AdjustWithMap(const KeyframeMatches& matches, FrameResult* r) {
   if (!map_) return;
   const Stopwatch t0;
-  const Rigid3d correction = map_->AddKeyframe(key_) * key_.world_from_cam.inverse();
+  const Rigid3d correction = map_->AddKeyframe(key_, matches) * key_.world_from_cam.inverse();
   for (Rigid3d* pose : {&key_.world_from_cam, &last_.world_from_cam, &before_.world_from_cam,
                         &depth_key_.world_from_cam}) {
     *pose = correction * *pose;

@@ -56,6 +56,8 @@ class Tracker {
     MotionEstimate motion;                          // ref_from_cur of the kept estimate
     Measured measured = Measured::kNothing;
     bool tracks_failed = false;  // its keypoints were tracked and failed verification
+    // The kept estimate's inliers, when it is SIFT matches against the keyframe (for the map).
+    KeyframeMatches keyframe_matches;
   };
 
   // Stages (see the class comment).
@@ -84,9 +86,10 @@ class Tracker {
   void Advance(Reference cur, bool new_keyframe, const Reference& measured_from);
   // Both references become `ref` (the first reference, a restart), the map's only keyframe.
   void Restart(Reference ref);
-  // With the local map: the new keyframe into it, adjusted with the keyframes sharing its
-  // points; every pose the next frames are chained from moves with it.
-  void AdjustWithMap(FrameResult* r);
+  // With the local map: the new keyframe into it (with its matches to the keyframe before),
+  // adjusted with the keyframes sharing its points; every pose the next frames are chained
+  // from moves with it.
+  void AdjustWithMap(const KeyframeMatches& matches, FrameResult* r);
   // With gravity_correction and a reading: turns the last estimated frame, and every pose the
   // next frames are chained from, toward the reading's down (GravityCorrection).
   void CorrectTilt(const Frame& frame);
