@@ -1,4 +1,7 @@
 // rgbdvo: RGB-D visual odometry after Fiala & Ufkes (CRV 2011).
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <opencv2/core/utils/logger.hpp>
@@ -46,11 +49,21 @@ int Main(int argc, char** argv) {
   return 0;
 }
 
+// Output that never reached standard output (a full disk) fails the command, as in coreutils.
+int FlushStandardOutput(int code) {
+  std::cout.flush();
+  errno = 0;
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good()) return code;
+  std::cerr << "rgbdvo: error: writing standard output: "
+            << (errno != 0 ? std::strerror(errno) : "write error") << std::endl;
+  return code == 0 ? 1 : code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
-    return Main(argc, argv);
+    return FlushStandardOutput(Main(argc, argv));
   } catch (...) {  // from the error reporting itself (a failing stream, out of memory)
     return 1;
   }

@@ -283,6 +283,23 @@ TEST_CASE("rgbdvo run: a full disk is detected on the first write, naming the fi
   }
 }
 
+TEST_CASE("rgbdvo info and eval fail when standard output cannot be written") {
+  if (!fs::exists("/dev/full")) {
+    WARN("no /dev/full here: the full-disk test does not apply");
+    return;
+  }
+  const std::string data = SourceDir() + "/data/tum_fr1_xyz_first30";
+  for (const std::string& args :
+       {" info " + data, " eval " + data + "/groundtruth.txt " + data + "/groundtruth.txt"}) {
+    std::string out;
+    // The subshell's stdout goes to the full device, its stderr to `out`.
+    const int code = RunCommand("(" + RgbdvoExe() + args + " >/dev/full)", &out);
+    INFO(args << ": " << out);
+    CHECK(code == 1);
+    CHECK_THAT(out, Catch::Contains("writing standard output"));
+  }
+}
+
 TEST_CASE("rgbdvo run --tum - writes the trajectory to standard output and nothing else there") {
   const std::string dir = SyntheticFolder();
   std::string out;
