@@ -1,10 +1,10 @@
 // rgbdvo: RGB-D visual odometry after Fiala & Ufkes (CRV 2011).
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <iostream>
 #include <opencv2/core/utils/logger.hpp>
+#include <system_error>
 
 #include "commands.hpp"
 #include "rgbdvo/util/image_heap.hpp"
@@ -55,7 +55,7 @@ int FlushStandardOutput(int code) {
   errno = 0;
   if (std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good()) return code;
   std::cerr << "rgbdvo: error: writing standard output: "
-            << (errno != 0 ? std::strerror(errno) : "write error") << std::endl;
+            << (errno != 0 ? std::generic_category().message(errno) : "write error") << std::endl;
   return code == 0 ? 1 : code;
 }
 
