@@ -131,6 +131,25 @@ inline void TwoLanes(int o, float a, float b, v8f* out) {
 #endif
 }
 
+// Normalise, clip large gradients, renormalise (Lowe section 6.1); stored as 0..255. The
+// squared norms are summed in 8 lanes (a single running sum would be a chain of 128 dependent
+// additions).
+inline void NormaliseToBytes(float* hist, uint8_t* out) {
+  const auto norm_sq = [hist] {
+    v8f sum = {};
+    for (int k = 0; k < kSiftDescriptorSize; k += kBins) {
+      const v8f v = *At(hist + k);
+      sum += v * v;
+    }
+    return ((sum[0] + sum[4]) + (sum[1] + sum[5])) + ((sum[2] + sum[6]) + (sum[3] + sum[7]));
+  };
+  const float clip = kClip * std::sqrt(norm_sq());
+  for (int k = 0; k < kSiftDescriptorSize; ++k) hist[k] = std::min(hist[k], clip);
+  const float scale = kToByte / std::max(std::sqrt(norm_sq()), 1e-7f);
+  for (int k = 0; k < kSiftDescriptorSize; ++k)
+    out[k] = static_cast<uint8_t>(std::min(255.0f, std::floor(hist[k] * scale + 0.5f)));
+}
+
 }  // namespace
 
 RGBDVO_SIMD_CLONES float OrientationHistogram(const cv::Mat& level, int x, int y, int radius,
@@ -309,22 +328,7 @@ RGBDVO_SIMD_CLONES void SiftDescriptor(const cv::Mat& level, float x, float y, f
     }
   }
 
-  // Normalise, clip large gradients, renormalise (Lowe section 6.1); stored as 0..255. The
-  // squared norms are summed in 8 lanes (a single running sum would be a chain of 128 dependent
-  // additions).
-  const auto norm_sq = [&hist] {
-    v8f sum = {};
-    for (int k = 0; k < kSiftDescriptorSize; k += kBins) {
-      const v8f v = *At(hist + k);
-      sum += v * v;
-    }
-    return ((sum[0] + sum[4]) + (sum[1] + sum[5])) + ((sum[2] + sum[6]) + (sum[3] + sum[7]));
-  };
-  const float clip = kClip * std::sqrt(norm_sq());
-  for (float& v : hist) v = std::min(v, clip);
-  const float scale = kToByte / std::max(std::sqrt(norm_sq()), 1e-7f);
-  for (int k = 0; k < kSiftDescriptorSize; ++k)
-    out[k] = static_cast<uint8_t>(std::min(255.0f, std::floor(hist[k] * scale + 0.5f)));
+  NormaliseToBytes(hist, out);
 }
 
 }  // namespace rgbdvo
