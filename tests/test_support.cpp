@@ -32,8 +32,8 @@ bool RigidNear(const Rigid3d& a, const Rigid3d& b, double rot_deg, double trans_
 
 Rigid3d RandomRigid(std::mt19937& rng, double angle_rad, double trans_m) {
   std::normal_distribution<double> n(0, 1);
-  const Eigen::Vector3d axis(n(rng), n(rng), n(rng));
-  const Eigen::Vector3d dir(n(rng), n(rng), n(rng));
+  const Eigen::Vector3d axis = RandomVector(rng, n);
+  const Eigen::Vector3d dir = RandomVector(rng, n);
   Rigid3d T = Rigid3d::Identity();
   T.linear() = AxisAngle(axis, angle_rad);
   T.translation() = dir.normalized() * trans_m;
@@ -53,7 +53,7 @@ std::vector<PointPair> SynthesizePairs(std::mt19937& rng, const Rigid3d& prev_fr
       p.p_prev = {x(rng), y(rng), z(rng)};
     } else {
       p.p_prev = prev_from_cur * p.p_cur;
-      if (sigma_m > 0) p.p_prev += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      if (sigma_m > 0) p.p_prev += RandomVector(rng, noise);
     }
     pairs.push_back(p);
   }

@@ -23,6 +23,17 @@ bool RigidNear(const Rigid3d& a, const Rigid3d& b, double rot_deg, double trans_
 // of norm `trans_m` in a random direction.
 Rigid3d RandomRigid(std::mt19937& rng, double angle_rad, double trans_m);
 
+// Three draws of `d` as a vector, one statement each so that every compiler draws them in the
+// same order (a call's arguments are evaluated in an order of the compiler's choosing); the last
+// coordinate is drawn first, the order the tests' figures were measured with.
+template <typename Distribution>
+Eigen::Vector3d RandomVector(std::mt19937& rng, Distribution& d) {
+  const double z = d(rng);
+  const double y = d(rng);
+  const double x = d(rng);
+  return {x, y, z};
+}
+
 // n pairs p_prev = prev_from_cur * p_cur (+ isotropic Gaussian noise sigma_m per coordinate on
 // p_prev), p_cur spread over a 4 x 3 x 3 m volume in front of the camera. The first
 // round(outlier_fraction*n) pairs get an unrelated p_prev.

@@ -20,12 +20,27 @@ namespace {
 constexpr int kTextureSize = 1024;
 constexpr double kTexelsPerMetre = 220.0;
 
+// A colour and a texel drawn one value per statement: the order in which a call's arguments are
+// evaluated is the compiler's choice, and a scene must not depend on it (last value first, the
+// order the scenes have always been made in).
+cv::Scalar RandomColour(cv::RNG& rng, int low, int high) {
+  const int c2 = rng.uniform(low, high);
+  const int c1 = rng.uniform(low, high);
+  const int c0 = rng.uniform(low, high);
+  return {static_cast<double>(c0), static_cast<double>(c1), static_cast<double>(c2)};
+}
+
+cv::Point RandomTexel(cv::RNG& rng) {
+  const int y = rng.uniform(0, kTextureSize);
+  const int x = rng.uniform(0, kTextureSize);
+  return {x, y};
+}
+
 cv::Mat MakeTexture(cv::RNG& rng) {
-  cv::Mat tex(kTextureSize, kTextureSize, CV_8UC3,
-              cv::Scalar(rng.uniform(60, 200), rng.uniform(60, 200), rng.uniform(60, 200)));
+  cv::Mat tex(kTextureSize, kTextureSize, CV_8UC3, RandomColour(rng, 60, 200));
   for (int i = 0; i < 900; ++i) {
-    const cv::Point c(rng.uniform(0, kTextureSize), rng.uniform(0, kTextureSize));
-    const cv::Scalar color(rng.uniform(0, 256), rng.uniform(0, 256), rng.uniform(0, 256));
+    const cv::Point c = RandomTexel(rng);
+    const cv::Scalar color = RandomColour(rng, 0, 256);
     const int r = rng.uniform(3, 28);
     if (rng.uniform(0, 2) == 0)
       cv::circle(tex, c, r, color, cv::FILLED, cv::LINE_AA);
@@ -41,7 +56,7 @@ cv::Mat MakePlainTexture(cv::RNG& rng) {
   const int base = rng.uniform(110, 150);
   cv::Mat tex(kTextureSize, kTextureSize, CV_8UC3, cv::Scalar(base, base + 4, base + 8));
   for (int i = 0; i < 200; ++i) {
-    const cv::Point c(rng.uniform(0, kTextureSize), rng.uniform(0, kTextureSize));
+    const cv::Point c = RandomTexel(rng);
     const int shade = base + rng.uniform(-30, 31);
     cv::circle(tex, c, rng.uniform(4, 16), cv::Scalar(shade, shade + 4, shade + 8), cv::FILLED,
                cv::LINE_AA);

@@ -93,7 +93,9 @@ TEST_CASE("Bundle adjustment brings disturbed poses and points back to the true 
   std::vector<Eigen::Vector3d> true_points;
   for (int i = 0; i < 200; ++i) {
     const double z = depth(rng);
-    true_points.emplace_back(xy(rng) * z * 0.5 + 0.2, xy(rng) * z * 0.4, z);
+    const double v = xy(rng);  // one draw per statement, last first: the same on every compiler
+    const double u = xy(rng);
+    true_points.emplace_back(u * z * 0.5 + 0.2, v * z * 0.4, z);
   }
   BundleOptions options;
   options.focal_px = kFocalPx;
@@ -136,7 +138,9 @@ TEST_CASE("Bundle adjustment shrugs off a wrong observation (Huber)", "[bundle_a
   std::vector<BundleObservation> observations;
   for (int i = 0; i < 100; ++i) {
     const double z = depth(rng);
-    const Eigen::Vector3d p(xy(rng) * z * 0.4, xy(rng) * z * 0.3, z);
+    const double v = xy(rng);  // one draw per statement, last first: the same on every compiler
+    const double u = xy(rng);
+    const Eigen::Vector3d p(u * z * 0.4, v * z * 0.3, z);
     points.push_back(p);
     for (int c = 0; c < 2; ++c) observations.push_back({c, i, Measure(rng, truth[c], p, 0.5)});
   }

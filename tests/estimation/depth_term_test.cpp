@@ -112,11 +112,15 @@ TEST_CASE("Refinement with the depth term pins a motion that few noisy feature p
   for (int i = 0; i < 6; ++i) {
     const double depth = z(rng);
     PointPair p;
-    p.p_cur = Eigen::Vector3d(xy(rng) * depth, xy(rng) * depth, depth);
+    const double v = xy(rng);  // one draw per statement, last first: the same on every compiler
+    const double u = xy(rng);
+    p.p_cur = Eigen::Vector3d(u * depth, v * depth, depth);
     const Eigen::Vector3d q = f.prev_from_cur * p.p_cur;
     const double zq = q.z() + dz(rng);
-    p.p_prev = Eigen::Vector3d((q.x() / q.z() + px(rng) / f.calib.fx) * zq,
-                               (q.y() / q.z() + px(rng) / f.calib.fx) * zq, zq);
+    const double ey = px(rng);
+    const double ex = px(rng);
+    p.p_prev = Eigen::Vector3d((q.x() / q.z() + ex / f.calib.fx) * zq,
+                               (q.y() / q.z() + ey / f.calib.fx) * zq, zq);
     pairs.push_back(p);
   }
   const std::vector<int> all = {0, 1, 2, 3, 4, 5};

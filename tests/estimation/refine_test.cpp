@@ -26,11 +26,15 @@ std::vector<PointPair> NoisyPairs(std::mt19937& rng, const Rigid3d& prev_from_cu
   for (int i = 0; i < n; ++i) {
     const double depth = z(rng);
     PointPair p;
-    p.p_cur = Eigen::Vector3d(xy(rng) * depth, xy(rng) * depth, depth);
+    const double v = xy(rng);  // one draw per statement, last first: the same on every compiler
+    const double u = xy(rng);
+    p.p_cur = Eigen::Vector3d(u * depth, v * depth, depth);
     const Eigen::Vector3d q = prev_from_cur * p.p_cur;
     const double zq = q.z() + dz(rng);
-    p.p_prev = Eigen::Vector3d((q.x() / q.z() + px(rng) / kFocalPx) * zq,
-                               (q.y() / q.z() + px(rng) / kFocalPx) * zq, zq);
+    const double ey = px(rng);
+    const double ex = px(rng);
+    p.p_prev = Eigen::Vector3d((q.x() / q.z() + ex / kFocalPx) * zq,
+                               (q.y() / q.z() + ey / kFocalPx) * zq, zq);
     pairs.push_back(p);
   }
   return pairs;
@@ -180,8 +184,11 @@ TEST_CASE("Inlier selection repeated to its fixed point no longer depends on the
   REQUIRE(o.selection_rounds > 1);
   auto pairs = NoisyPairs(rng, T, 240, o.pixel_sigma, o.depth_noise_coeff * 4.0);
   std::uniform_real_distribution<double> offset(0.05, 0.3);
-  for (int i = 200; i < 240; ++i)
-    pairs[i].p_prev += Eigen::Vector3d(offset(rng), -offset(rng), offset(rng));
+  for (int i = 200; i < 240; ++i) {
+    Eigen::Vector3d shift = RandomVector(rng, offset);
+    shift.y() = -shift.y();
+    pairs[i].p_prev += shift;
+  }
   Rigid3d a = T, b = T;
   a.translation() += Eigen::Vector3d(0.004, 0, 0);
   b.linear() = Eigen::AngleAxisd(-0.005, Eigen::Vector3d::UnitY()) * b.linear();
@@ -247,8 +254,10 @@ std::vector<PointPair> ObservedPairs(std::mt19937& rng, const RefineOptions& o,
   std::normal_distribution<double> n01(0, 1);
   const auto observe = [&](const Eigen::Vector3d& p) {
     const double z = p.z() + n01(rng) * o.depth_noise_coeff * p.z() * p.z();
-    return Eigen::Vector3d((p.x() / p.z() + n01(rng) * o.pixel_sigma / kFocalPx) * z,
-                           (p.y() / p.z() + n01(rng) * o.pixel_sigma / kFocalPx) * z, z);
+    const double ey = n01(rng);  // one draw per statement, last first: the same on every compiler
+    const double ex = n01(rng);
+    return Eigen::Vector3d((p.x() / p.z() + ex * o.pixel_sigma / kFocalPx) * z,
+                           (p.y() / p.z() + ey * o.pixel_sigma / kFocalPx) * z, z);
   };
   std::vector<PointPair> pairs;
   for (const Eigen::Vector3d& p : points_cur) {
@@ -292,9 +301,15 @@ TEST_CASE("TranslationStd predicts the spread of the refined translation") {
   std::vector<Eigen::Vector3d> spread, wall;
   for (int i = 0; i < 40; ++i) {
     const double z = depth(rng);
-    spread.emplace_back(u(rng) * z, u(rng) * z, z);
+    const double y = u(rng);  // one draw per statement, last first: the same on every compiler
+    const double x = u(rng);
+    spread.emplace_back(x * z, y * z, z);
   }
-  for (int i = 0; i < 12; ++i) wall.emplace_back(u(rng) * 0.6, u(rng) * 0.6, 3.0);
+  for (int i = 0; i < 12; ++i) {
+    const double y = u(rng);
+    const double x = u(rng);
+    wall.emplace_back(x * 0.6, y * 0.6, 3.0);
+  }
   for (const auto* points : {&spread, &wall}) {
     std::vector<PointPair> exact;
     for (const Eigen::Vector3d& p : *points) exact.push_back({truth * p, p});

@@ -34,8 +34,13 @@ void RandomPoints(cv::Size size, int n, unsigned seed, std::vector<cv::Point2f>*
   std::uniform_real_distribution<float> uy(-12.f, static_cast<float>(size.height) + 12.f);
   std::uniform_real_distribution<float> off(-20.f, 20.f);
   for (int i = 0; i < n; ++i) {
-    points->emplace_back(ux(rng), uy(rng));
-    starts->push_back(points->back() + cv::Point2f(off(rng), off(rng)));
+    // One draw per statement, last coordinate first: the same points from every compiler.
+    const float y = uy(rng);
+    const float x = ux(rng);
+    points->emplace_back(x, y);
+    const float dy = off(rng);
+    const float dx = off(rng);
+    starts->push_back(points->back() + cv::Point2f(dx, dy));
   }
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "test_support.hpp"
+
 using namespace rgbdvo;
 
 TEST_CASE("RotationAngleRad returns the angle from 0 to pi, accurately at both ends") {
@@ -26,7 +28,7 @@ TEST_CASE("NearestRotation keeps a rotation and repairs a perturbed or reflected
   std::mt19937 rng(5);
   std::normal_distribution<double> n(0, 1);
   for (int i = 0; i < 50; ++i) {
-    const Eigen::Matrix3d R = AxisAngle(Eigen::Vector3d(n(rng), n(rng), n(rng)), 3.0 * i / 50);
+    const Eigen::Matrix3d R = AxisAngle(test::RandomVector(rng, n), 3.0 * i / 50);
     CHECK((NearestRotation(R) - R).norm() < 1e-12);
     Eigen::Matrix3d noisy = R;
     for (int k = 0; k < 9; ++k) noisy(k / 3, k % 3) += 1e-3 * n(rng);
