@@ -20,6 +20,8 @@ import shlex
 import subprocess
 import sys
 
+CLANG_TIDY = os.environ.get("CLANG_TIDY", "clang-tidy")  # the program: scripts/tidy.sh names it
+
 
 def preprocess_command(entry):
     """The entry's compile command turned into clang's preprocessor, writing to stdout."""
@@ -54,7 +56,7 @@ def cache_key(entry, root, build, fixed):
 
 
 def check(entry, build, extra, cache_dir, key):
-    run = subprocess.run(["clang-tidy", "-p", build, "-quiet"] + extra + [entry["file"]],
+    run = subprocess.run([CLANG_TIDY, "-p", build, "-quiet"] + extra + [entry["file"]],
                          capture_output=True, text=True)
     output = "\n".join(line for line in (run.stdout + run.stderr).splitlines()
                        if not re.fullmatch(r"\d+ warnings? (and \d+ errors? )?generated\.", line))
@@ -78,7 +80,7 @@ def main():
                 by_file.setdefault(e["file"], []).append(e)
     entries = [dict(group[0], commands=[command_of(e) for e in group])
                for group in by_file.values()]
-    version = subprocess.run(["clang-tidy", "--version"], capture_output=True, check=True).stdout
+    version = subprocess.run([CLANG_TIDY, "--version"], capture_output=True, check=True).stdout
     with open(".clang-tidy", "rb") as f:
         fixed = version + b"\0" + f.read() + b"\0" + " ".join(extra).encode() + b"\0"
     jobs = os.cpu_count() or 1

@@ -417,6 +417,7 @@ bool PoolEdges(const AutoCalibrateOptions& o, const std::vector<Frame>& frames,
   result.edge_points = static_cast<int>(pr.points.size());
   {
     std::vector<float> z;
+    z.reserve(pr.points.size());
     for (const EdgePoint& p : pr.points) z.push_back(p.z_m);
     std::nth_element(z.begin(), z.begin() + z.size() / 2, z.end());
     pr.typical_z = z[z.size() / 2];

@@ -226,6 +226,7 @@ ClickerAction CalibrationClicker::Key(int key) {
 
 std::vector<PixelPair> CalibrationClicker::Pairs() const {
   std::vector<PixelPair> out;
+  out.reserve(pairs_.size());
   for (const ClickedPair& p : pairs_) out.push_back(p.pair);
   return out;
 }
@@ -343,6 +344,7 @@ void CalibrationClicker::DrawPanel(cv::Mat& canvas) const {
   y += line_h;
   // Residuals, newest last; as many lines as fit above the message line.
   std::vector<std::string> tokens;
+  tokens.reserve(pairs_.size());
   for (size_t i = 0; i < pairs_.size(); ++i)
     tokens.push_back("#" + std::to_string(i + 1) + " " +
                      (fit_.success ? Format("%.1f", fit_.residual_px[i]) : std::string("-")) +

@@ -195,7 +195,7 @@ Eigen::Vector3d ColorRayPoint(const Calibration& c, const Eigen::Vector2d& uv_vi
 
 std::optional<Eigen::Vector2d> FindIrPixel(const Calibration& c, const cv::Mat& depth_m,
                                            const Eigen::Vector2d& uv_vis) {
-  const Eigen::Vector2d at_infinity = ColorToIr(c, uv_vis);
+  Eigen::Vector2d at_infinity = ColorToIr(c, uv_vis);
   if (!c.HasDisparityTerm()) return at_infinity;
   // The ray's IR pixel at inverse depth w = 1/z is at_infinity + s w.
   const Eigen::Vector2d s(c.s_u, c.s_v);

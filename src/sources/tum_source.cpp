@@ -40,6 +40,7 @@ namespace {
 bool Earlier(const TumListEntry& a, const TumListEntry& b) { return a.timestamp < b.timestamp; }
 
 // The colour frame of a list entry or of a pair: what the time order is taken by.
+// NOLINTNEXTLINE(bugprone-return-const-ref-from-parameter): only given elements of a vector
 const TumListEntry& Colour(const TumListEntry& e) { return e; }
 const TumListEntry& Colour(const TumPair& p) { return p.rgb; }
 

@@ -49,9 +49,10 @@ Eigen::Vector2d TrueIrPixel(const SyntheticKinectOptions& o, double u, double v,
 // Largest error, px, of calib's eq. 1 over the colour image (every 32 px) at depth z.
 double MaxMappingError(const SyntheticKinectOptions& o, const Calibration& calib, double z) {
   double worst = 0;
-  for (double u = 0; u < 640; u += 32)
-    for (double v = 0; v < 480; v += 32)
-      worst = std::max(worst, (ColorToIr(calib, {u, v}) - TrueIrPixel(o, u, v, z)).norm());
+  for (int u = 0; u < 640; u += 32)
+    for (int v = 0; v < 480; v += 32)
+      worst = std::max(worst,
+                       (ColorToIr(calib, Eigen::Vector2d(u, v)) - TrueIrPixel(o, u, v, z)).norm());
   return worst;
 }
 
@@ -98,9 +99,10 @@ TEST_CASE("AutoCalibrate keeps the start's disparity term and fits A-D around it
   CHECK(std::abs(fit.D - truth.D) < 1.5);
   double worst = 0;
   for (double z : {1.5, 2.5, 4.0})
-    for (double u = 0; u < 640; u += 32)
-      for (double v = 0; v < 480; v += 32)
-        worst = std::max(worst, (ColorToIr(c, {u, v}, z) - TrueIrPixel(o, u, v, z)).norm());
+    for (int u = 0; u < 640; u += 32)
+      for (int v = 0; v < 480; v += 32)
+        worst = std::max(worst,
+                         (ColorToIr(c, Eigen::Vector2d(u, v), z) - TrueIrPixel(o, u, v, z)).norm());
   INFO("largest mapping error " << worst << " px");
   CHECK(worst < 1.0);
 }
@@ -206,7 +208,11 @@ class CountingSource : public FrameSource {
     ++read_;
     return f;
   }
-  bool Skip() override { return i_ < n_ && ++i_; }
+  bool Skip() override {
+    if (i_ >= n_) return false;
+    ++i_;
+    return true;
+  }
   std::string Describe() const override { return "counting"; }
   std::optional<size_t> Size() const override { return n_; }
   int read() const { return read_; }

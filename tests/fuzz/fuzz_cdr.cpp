@@ -19,20 +19,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     DecodeRos2CompressedImage(data, size);
   } catch (const std::exception&) {
+    // refused with a message: expected
   }
   try {
     const std::vector<uint8_t> again = EncodeRos2CameraInfo(DecodeRos2CameraInfo(data, size));
     if (EncodeRos2CameraInfo(DecodeRos2CameraInfo(again.data(), again.size())) != again)
       __builtin_trap();
   } catch (const std::exception&) {
+    // refused with a message: expected
   }
   try {
     DecodeRos2Imu(data, size);
   } catch (const std::exception&) {
+    // refused with a message: expected
   }
   try {
     DecodeRos2Header(data, size, kRos2ImageType);
   } catch (const std::exception&) {
+    // refused with a message: expected
   }
   return 0;
 }

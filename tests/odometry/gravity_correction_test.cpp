@@ -34,8 +34,10 @@ double TiltDeg(const Rigid3d& world_from_cam, const Eigen::Vector3d& true_down_i
 
 // Readings of the first time constant at a level pose: the world's down is +y.
 void Settle(GravityCorrection* g, const GravityOptions& o, double* t) {
-  for (; *t < o.time_constant_s + kDt / 2; *t += kDt)
+  while (*t < o.time_constant_s + kDt / 2) {  // the caller's clock, advanced as readings come
     CHECK(test::RigidNear(g->Update(Rigid3d::Identity(), kDown, *t), Rigid3d::Identity(), 0, 0));
+    *t += kDt;
+  }
 }
 
 }  // namespace

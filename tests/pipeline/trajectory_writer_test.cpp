@@ -38,7 +38,7 @@ std::vector<std::vector<double>> Rows(const std::string& path, char sep) {
     for (char& c : line) c = c == sep ? ' ' : c;
     std::istringstream fields(line);
     std::vector<double> v;
-    for (std::string f; fields >> f;) v.push_back(std::atof(f.c_str()));  // status: 0
+    for (std::string f; fields >> f;) v.push_back(std::stod(f));  // status: 0
     rows.push_back(v);
   }
   return rows;

@@ -86,9 +86,6 @@ TEST_CASE("Bad calibration files fail naming the file and field") {
 TEST_CASE("Calibration matrices are checked against their shape before anything is allocated") {
   const std::string dir = test::MakeTempDir("badcalib");
   const std::string head = "%YAML:1.0\n---\nA: 1.\nB: 0.\nC: 1.\nD: 0.\n";
-  const std::string dist =
-      "dist_ir: !!opencv-matrix\n   rows: 1\n   cols: 5\n   dt: d\n"
-      "   data: [ 0., 0., 0., 0., 0. ]\n";
   const std::string tail = "min_depth_m: 0.4\nmax_depth_m: 8.\n";
   const auto matrix = [](const std::string& key, const std::string& rows, const std::string& cols,
                          const std::string& data) {

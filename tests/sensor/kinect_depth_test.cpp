@@ -18,7 +18,8 @@ TEST_CASE("Kinect raw disparity follows Burrus's fit and 2047 means no reading")
 }
 
 TEST_CASE("KinectRawFromMetres inverts the fit to within half a raw step") {
-  for (double z = 0.4; z < 8.0; z += 0.0137) {
+  for (int k = 0; 0.4 + 0.0137 * k < 8.0; ++k) {
+    const double z = 0.4 + 0.0137 * k;
     const uint16_t raw = KinectRawFromMetres(z);
     REQUIRE(raw != kKinectNoReading);
     const double step = 0.0030711016 * z * z;  // dz/draw

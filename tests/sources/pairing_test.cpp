@@ -10,6 +10,7 @@ namespace {
 
 std::vector<std::pair<size_t, size_t>> Pairs(const StampPairs& p) {
   std::vector<std::pair<size_t, size_t>> out;
+  out.reserve(p.pairs.size());
   for (const StampPairs::Pair& q : p.pairs) out.emplace_back(q.color, q.depth);
   return out;
 }

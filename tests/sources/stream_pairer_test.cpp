@@ -137,6 +137,7 @@ TEST_CASE("One-to-one StreamPairer gives associate.py's pairs over jittered 30 H
     take(p.Finish());
     const StampPairs whole = PairStamps(Pairing::kOneToOne, color_s, depth_s, 0.02);
     std::vector<std::pair<int, int>> expected;
+    expected.reserve(whole.pairs.size());
     for (const StampPairs::Pair& q : whole.pairs)
       expected.emplace_back(color_id[q.color], depth_id[q.depth]);
     INFO("trial " << trial);
