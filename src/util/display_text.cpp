@@ -54,4 +54,13 @@ std::string Printable(std::string_view s) {
   return out;
 }
 
+std::string Excerpt(std::string_view s, size_t max_bytes) {
+  if (s.size() <= max_bytes) return Printable(s);
+  size_t end = max_bytes;
+  // Back to the start of the character the cut falls in (at most 3 continuation bytes).
+  for (int k = 0; k < 3 && end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80; ++k)
+    --end;
+  return Printable(s.substr(0, end)) + "...";
+}
+
 }  // namespace rgbdvo

@@ -22,3 +22,13 @@ TEST_CASE("Printable escapes the bytes a terminal acts on and keeps text, other 
   const std::string once = Printable("\x1b[1m\xff");
   CHECK(Printable(once) == once);
 }
+
+TEST_CASE("Excerpt quotes the start of a long line, cut where a character starts") {
+  CHECK(Excerpt("1.0 rgb/1.png") == "1.0 rgb/1.png");
+  const std::string line(50 << 20, 'x');
+  CHECK(Excerpt(line) == std::string(80, 'x') + "...");
+  // A 3-byte character across byte 80 is left out whole.
+  const std::string wide = std::string(79, 'a') + "\xe6\x97\xa5" + "b";
+  CHECK(Excerpt(wide) == std::string(79, 'a') + "...");
+  CHECK(Excerpt(std::string(90, '\x1b'), 4) == "\\x1b\\x1b\\x1b\\x1b...");
+}
