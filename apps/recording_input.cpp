@@ -10,6 +10,7 @@
 #include "rgbdvo/sources/pairing.hpp"
 #include "rgbdvo/sources/ros2_bag_source.hpp"
 #include "rgbdvo/util/display_text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 #include "run_common.hpp"
 #ifdef RGBDVO_WITH_ROSBAG
 #include "rgbdvo/sources/rosbag_source.hpp"
@@ -52,6 +53,8 @@ void RecordingArgs::AddFlags(CLI::App* cmd) {
 }
 
 bool IsRosbagFile(const std::string& path) {
+  // Checked before the file is opened: a FIFO would block the open.
+  if (std::filesystem::is_directory(path) || !InputFileSize(path, "recording file")) return false;
   std::ifstream in(path, std::ios::binary);
   char magic[13] = {};
   return in.read(magic, sizeof magic) && std::string(magic, sizeof magic) == "#ROSBAG V2.0\n";

@@ -18,7 +18,7 @@ constexpr const char* kHeaderWithDepth = "u_vis,v_vis,u_ir,v_ir,z_ir_m";
 }  // namespace
 
 std::vector<PixelPair> LoadPixelPairs(const std::string& path) {
-  std::istringstream in(ReadTextFile(path, "pairs file"));
+  std::istringstream in(ReadTextFile(path, "pairs file", kMaxListFileBytes));
   std::vector<PixelPair> pairs;
   bool header_seen = false;
   size_t columns = 4;

@@ -32,7 +32,7 @@ double ParseNumber(const std::string& field, const std::string& where) {
 }
 
 std::vector<ListLine> ReadListLines(const std::string& path, const std::string& what) {
-  std::istringstream in(ReadTextFile(path, what));
+  std::istringstream in(ReadTextFile(path, what, kMaxListFileBytes));
   std::vector<ListLine> lines;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {

@@ -31,7 +31,7 @@ std::vector<std::string> Split(const std::string& line, bool csv) {
 }  // namespace
 
 Trajectory ReadTrajectory(const std::string& path) {
-  std::istringstream in(ReadTextFile(path, "trajectory file"));
+  std::istringstream in(ReadTextFile(path, "trajectory file", kMaxTrajectoryFileBytes));
   Trajectory traj;
   traj.path = path;
   static const char* kNames[] = {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};

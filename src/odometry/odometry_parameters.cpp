@@ -378,7 +378,7 @@ void ApplyConfig(
 void ApplyConfigFile(
     const std::string& path, OdometryOptions* options,
     const std::function<bool(const std::string& key, const std::string& value)>& other) {
-  std::istringstream in(ReadTextFile(path, "configuration file"));
+  std::istringstream in(ReadTextFile(path, "configuration file", kMaxConfigFileBytes));
   ApplyConfig(in, path, options, other);
 }
 

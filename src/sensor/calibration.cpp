@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -309,14 +308,7 @@ void Calibration::Check() const {
 
 Calibration LoadCalibration(const std::string& path) {
   // A calibration is a page of text; a larger file is not one (and would be parsed whole).
-  constexpr std::uintmax_t kMaxBytes = 1 << 20;
-  std::error_code ec;
-  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-  if (ec) throw std::runtime_error(path + ": cannot open calibration file (" + ec.message() + ")");
-  if (bytes > kMaxBytes)
-    throw std::runtime_error(path + ": " + std::to_string(bytes) +
-                             " bytes, too large for a calibration file (at most 1 MiB)");
-  const std::string text = ReadTextFile(path, "calibration file");
+  const std::string text = ReadTextFile(path, "calibration file", kMaxConfigFileBytes);
   // A calibration is text: control bytes are refused before anything else.
   for (size_t i = 0; i < text.size(); ++i) {
     const auto byte = static_cast<unsigned char>(text[i]);

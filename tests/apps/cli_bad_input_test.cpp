@@ -1,4 +1,6 @@
 // End-to-end tests of hostile input files: what reaches the terminal from them.
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -14,9 +16,10 @@ using namespace rgbdvo::test;
 
 namespace {
 
+// Killed after 60 s: open() on a FIFO without a writer never returns, and SIGTERM waits for it.
 std::string Rgbdvo(const std::string& args, int* code) {
   std::string out;
-  *code = RunCommand(RgbdvoExe() + " " + args, &out);
+  *code = RunCommand("timeout -s KILL 60 " + RgbdvoExe() + " " + args, &out);
   return out;
 }
 
@@ -156,4 +159,39 @@ TEST_CASE("A UTF-8 byte order mark at the start of a text input is skipped") {
   out = Rgbdvo("eval " + dir + "/gt_bom.txt " + dir + "/t_bom.txt", &code);
   CHECK(code == 0);
   CHECK_THAT(out, Catch::Contains("ATE (m)"));
+}
+
+TEST_CASE("Files that are not regular files are refused before they are opened, text is capped") {
+  const std::string dir = MakeTempDir("cli_fifo");
+  WriteTumSequence(dir, SyntheticScene(), PinholeCamera(), MakeSmoothPath(2));
+  const std::string calib = Calib(dir), fifo = dir + "/fifo";
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  int code = 0;
+  for (const std::string& args :
+       {"run " + fifo + " --calib " + calib,
+        "run " + dir + " --calib " + calib + " --config " + fifo, "run " + dir + " --calib " + fifo,
+        "eval " + fifo + " " + fifo, "info " + fifo}) {
+    const std::string out = Rgbdvo(args, &code);
+    INFO(args << "\n" << out);
+    CHECK(code == 1);
+    CHECK_THAT(out, Catch::Contains(fifo + ": a FIFO, not a regular file"));
+  }
+  // An image.
+  const std::vector<TumListEntry> frames = ReadTumList(dir + "/rgb.txt");
+  std::filesystem::remove(dir + "/" + frames[1].path);
+  REQUIRE(mkfifo((dir + "/" + frames[1].path).c_str(), 0600) == 0);
+  std::string out = Rgbdvo("run " + dir + " --calib " + calib, &code);
+  INFO(out);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains(frames[1].path + ": a FIFO, not a regular file (image file"));
+
+  // /dev/zero as configuration: refused, not read without end; a large regular file: capped.
+  out = Rgbdvo("run --dump-config --config /dev/zero", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("/dev/zero: a character device, not a regular file"));
+  std::ofstream(dir + "/big.cfg") << std::string(2 << 20, '#');
+  out = Rgbdvo("run --dump-config --config " + dir + "/big.cfg", &code);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains("big.cfg: 2097152 bytes, above the limit of 1 MiB for "
+                                  "configuration files"));
 }
