@@ -40,7 +40,7 @@ bool Finite(const ErrorStats& s) {
 }
 
 // Why the statistics of `errors` (what: "position error") are not finite, or "" when they are:
-// coordinates so large (1e308) that an error or its square overflows.
+// coordinates so large that an error or its square overflows.
 std::string NonFiniteReason(const std::vector<double>& errors, const ErrorStats& stats,
                             const std::string& what, const std::vector<double>& times) {
   for (size_t k = 0; k < errors.size(); ++k) {

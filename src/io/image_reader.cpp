@@ -344,7 +344,7 @@ cv::Mat ReadImage(const std::string& path, int imread_flags) {
   // The file's bytes, in a buffer kept per thread that grows and never shrinks: a fresh vector
   // (or one resized from a smaller image) would zero every byte before reading it.
   thread_local std::vector<uint8_t> buffer;
-  // Checked first: fopen() opens a folder, which then seems to hold 2^63 bytes.
+  // Checked first: fopen() opens a folder, whose size then reads as absurdly large.
   if (!InputFileSize(path, "image file")) return cv::Mat();
   size_t size = 0;
   if (FILE* f = std::fopen(path.c_str(), "rb")) {

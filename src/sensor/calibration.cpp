@@ -247,8 +247,7 @@ Calibration FromCalibrationFields(const CalibrationYaml& yaml, const std::string
 // camera (the identity mapping), the default depth range unless min_depth_m/max_depth_m are
 // added.
 Calibration FromCameraInfo(const CalibrationYaml& yaml, const std::string& path) {
-  // Every matrix's data as many values as its rows and cols say: a file whose shape and data
-  // disagree was edited wrong, and which of the two is right cannot be known.
+  // Shape and data that disagree were edited wrong, and which of the two is right is unknown.
   for (const auto& [key, node] : yaml.top()) {
     const auto rows = node.children.find("rows"), cols = node.children.find("cols");
     const auto data = node.children.find("data");

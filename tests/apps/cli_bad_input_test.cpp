@@ -16,7 +16,7 @@ using namespace rgbdvo::test;
 
 namespace {
 
-// Killed after 60 s: open() on a FIFO without a writer never returns, and SIGTERM waits for it.
+// Killed when it hangs: open() on a FIFO without a writer never returns, and SIGTERM waits for it.
 std::string Rgbdvo(const std::string& args, int* code) {
   std::string out;
   *code = RunCommand("timeout -s KILL 60 " + RgbdvoExe() + " " + args, &out);

@@ -244,7 +244,7 @@ struct FrameResult {
 // still measured, not lost.
 class Tracker;
 
-// The smallest image processed: the depth fallback halves it, then builds a pyramid of 4 levels.
+// The smallest image processed: the depth fallback halves it, then builds an image pyramid.
 inline const cv::Size kMinImageSize(64, 48);
 
 class Odometry {

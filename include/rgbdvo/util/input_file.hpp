@@ -1,6 +1,6 @@
 #pragma once
 // Input files opened by path, checked the same way for every reader: what is at the path (open()
-// on a FIFO waits for a writer forever, a folder reads as a file of 2^63 bytes, /dev/zero never
+// on a FIFO waits for a writer forever, a folder reads as a file of absurd size, /dev/zero never
 // ends), and how much a text file may hold.
 
 #include <cstdint>
@@ -15,8 +15,8 @@ namespace rgbdvo {
 // expected)" (or a character device, block device, socket).
 std::optional<std::uint64_t> InputFileSize(const std::string& path, const std::string& what);
 
-// What a text file may hold: a configuration or calibration is a page, a list of frames or a
-// trajectory of a day's recording is tens of MB.
+// What a text file may hold: a configuration or calibration is a page; a list of frames or a
+// trajectory of a long recording is far below these.
 constexpr std::uint64_t kMaxConfigFileBytes = std::uint64_t{1} << 20;
 constexpr std::uint64_t kMaxListFileBytes = std::uint64_t{64} << 20;
 constexpr std::uint64_t kMaxTrajectoryFileBytes = std::uint64_t{256} << 20;
