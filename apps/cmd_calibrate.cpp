@@ -14,6 +14,7 @@
 #include "rgbdvo/sensor/calibration_catalog.hpp"
 #include "rgbdvo/sources/frame_cache.hpp"
 #include "rgbdvo/sources/open_source.hpp"
+#include "rgbdvo/util/display_text.hpp"
 
 namespace rgbdvo::cli {
 namespace {
@@ -78,7 +79,7 @@ int Automatic(const CalibrateArgs& a) {
   const AutoCalibration fit = AutoCalibrate(a.auto_options, frames, base);
   std::cout << fit.Brief() << std::endl;
   if (!fit.success) throw std::runtime_error(a.source + ": " + fit.reason);
-  if (!fit.warning.empty()) std::cerr << "rgbdvo: warning: " << fit.warning << std::endl;
+  if (!fit.warning.empty()) std::cerr << "rgbdvo: warning: " << Printable(fit.warning) << std::endl;
   const Calibration calib = ApplyAutoCalibration(base, fit, a.source);
   SaveCalibration(calib, a.out);
   std::cout << "wrote " << a.out << std::endl;

@@ -33,6 +33,7 @@ void AddCaptureCommand(CLI::App& app) {
 #include "rgbdvo/capture/kinect_source.hpp"
 #include "rgbdvo/pipeline/run.hpp"
 #include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/util/display_text.hpp"
 #include "run_common.hpp"
 
 namespace rgbdvo::cli {
@@ -110,7 +111,7 @@ int Capture(CaptureArgs& a) {
   if (const std::string gravity = odometry.GravityBrief(); !gravity.empty())
     info << gravity << std::endl;
   if (stats.end == CaptureEnd::kDeviceLost) {
-    std::cerr << "rgbdvo: error: " << stats.end_reason
+    std::cerr << "rgbdvo: error: " << Printable(stats.end_reason)
               << "; the trajectory and recording so far are complete and usable" << std::endl;
     return kExitDeviceLost;
   }

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "rgbdvo/util/display_text.hpp"
 #include "rgbdvo/util/image_heap.hpp"
 
 namespace {
@@ -40,7 +41,8 @@ int Main(int argc, char** argv) {
     // --help and --version exit 0; a bad command line exits 2, as getopt-based tools do.
     return app.exit(e) == 0 ? 0 : 2;
   } catch (const std::exception& e) {
-    std::cerr << "rgbdvo: error: " << e.what() << std::endl;
+    // Messages quote input files, whose bytes must not reach the terminal as control sequences.
+    std::cerr << "rgbdvo: error: " << rgbdvo::Printable(e.what()) << std::endl;
     return 1;
   } catch (...) {
     std::cerr << "rgbdvo: error: unknown exception" << std::endl;

@@ -9,6 +9,8 @@
 #include "rgbdvo/sources/association_file.hpp"
 #include "rgbdvo/sources/pairing.hpp"
 #include "rgbdvo/sources/ros2_bag_source.hpp"
+#include "rgbdvo/util/display_text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 #include "run_common.hpp"
 #ifdef RGBDVO_WITH_ROSBAG
 #include "rgbdvo/sources/rosbag_source.hpp"
@@ -51,6 +53,8 @@ void RecordingArgs::AddFlags(CLI::App* cmd) {
 }
 
 bool IsRosbagFile(const std::string& path) {
+  // Checked before the file is opened: a FIFO would block the open.
+  if (std::filesystem::is_directory(path) || !InputFileSize(path, "recording file")) return false;
   std::ifstream in(path, std::ios::binary);
   char magic[13] = {};
   return in.read(magic, sizeof magic) && std::string(magic, sizeof magic) == "#ROSBAG V2.0\n";
@@ -64,13 +68,14 @@ void ReportTimeOrder(const TumSource& tum) {
   const TimeOrderRepair& order = tum.rgb_order();
   const auto lines = [](size_t n) { return std::to_string(n) + (n == 1 ? " line" : " lines"); };
   if (order.out_of_order > 0)
-    std::cerr << "rgbdvo: warning: " << tum.rgb_list() << ": " << lines(order.out_of_order)
-              << " out of time order; frames taken in time order\n";
+    std::cerr << "rgbdvo: warning: " << Printable(tum.rgb_list()) << ": "
+              << lines(order.out_of_order) << " out of time order; frames taken in time order\n";
   if (!order.repeated.empty())
-    std::cerr << "rgbdvo: warning: " << tum.rgb_list() << ": skipping "
+    std::cerr << "rgbdvo: warning: " << Printable(tum.rgb_list()) << ": skipping "
               << lines(order.repeated.size())
               << (order.repeated.size() == 1 ? " that repeats" : " that repeat")
-              << " an earlier line's timestamp (first: " << order.repeated.front().path << ")\n";
+              << " an earlier line's timestamp (first: " << Printable(order.repeated.front().path)
+              << ")\n";
 }
 
 // The lines of ReportTimeOrder, and one when colour frames found no depth frame (of their own,
@@ -83,7 +88,7 @@ void ReportSkippedFrames(const FrameSource& recording, const SourceOptions& opti
   if (auto* tum = dynamic_cast<const TumSource*>(&recording)) {
     ReportTimeOrder(*tum);
     unpaired = tum->unpaired().size();
-    if (unpaired > 0) first = " (first: " + tum->unpaired().front().path + ")";
+    if (unpaired > 0) first = " (first: " + Printable(tum->unpaired().front().path) + ")";
   } else if (auto* fakenect = dynamic_cast<const FakenectSource*>(&recording)) {
     unpaired = static_cast<size_t>(fakenect->unpaired());
     window = options.fakenect.max_time_diff_s;
@@ -122,7 +127,8 @@ Recording OpenRos2Bag(const RecordingArgs& args) {
   options.max_time_diff_s = args.source.tum.max_time_diff_s;
   auto bag = std::make_unique<Ros2BagSource>(args.path, options);
   if (!bag->scan_error().empty())
-    std::cerr << "rgbdvo: warning: " << bag->scan_error() << "; the frames before it are run\n";
+    std::cerr << "rgbdvo: warning: " << Printable(bag->scan_error())
+              << "; the frames before it are run\n";
   Recording r;
   r.inputs = {args.path};
   const Ros2BagSourceOptions& chosen = bag->chosen();

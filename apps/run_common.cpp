@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "rgbdvo/pipeline/run_parameters.hpp"
+#include "rgbdvo/util/display_text.hpp"
 
 namespace rgbdvo::cli {
 
@@ -179,7 +180,7 @@ std::string MotionModelSummary(const Odometry& odometry, const RunSummary& summa
 
 std::function<void(const std::string&)> PrintWarning(bool progress) {
   return [progress](const std::string& warning) {
-    std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: " << warning << std::endl;
+    std::cerr << (progress ? "\n" : "") << "rgbdvo: warning: " << Printable(warning) << std::endl;
   };
 }
 

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 declare -A may_use=(
   [util]=""
   [geometry]=""
-  [sensor]="geometry"
+  [sensor]="geometry util"
   [io]="geometry util"
   [features/sift]="util"
   [features]="util features/sift"
@@ -18,7 +18,7 @@ declare -A may_use=(
   [odometry]="geometry sensor io util features features/sift estimation sources"
   [pipeline]="geometry sensor io util features features/sift estimation sources odometry"
   [evaluation]="geometry io util"
-  [calibrate]="geometry sensor io sources"
+  [calibrate]="geometry sensor io util sources"
   [synthetic]="geometry sensor io util sources capture"
 )
 

@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "rgbdvo/io/text.hpp"
+#include "rgbdvo/util/display_text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -16,8 +18,7 @@ constexpr const char* kHeaderWithDepth = "u_vis,v_vis,u_ir,v_ir,z_ir_m";
 }  // namespace
 
 std::vector<PixelPair> LoadPixelPairs(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open pairs file");
+  std::istringstream in(ReadTextFile(path, "pairs file", kMaxListFileBytes));
   std::vector<PixelPair> pairs;
   bool header_seen = false;
   size_t columns = 4;
@@ -33,7 +34,7 @@ std::vector<PixelPair> LoadPixelPairs(const std::string& path) {
         if (c != ' ' && c != '\t') compact += c;
       if (compact != kHeader && compact != kHeaderWithDepth)
         throw std::runtime_error(where + ": expected the header '" + kHeader + "' or '" +
-                                 kHeaderWithDepth + "', got '" + line + "'");
+                                 kHeaderWithDepth + "', got '" + Excerpt(line) + "'");
       columns = compact == kHeader ? 4 : 5;
       header_seen = true;
       continue;

@@ -34,6 +34,27 @@ std::vector<StampedPose> Shifted(const std::vector<StampedPose>& est, double t_o
   return out;
 }
 
+bool Finite(const ErrorStats& s) {
+  return std::isfinite(s.rmse) && std::isfinite(s.mean) && std::isfinite(s.median) &&
+         std::isfinite(s.max);
+}
+
+// Why the statistics of `errors` (what: "position error") are not finite, or "" when they are:
+// coordinates so large that an error or its square overflows.
+std::string NonFiniteReason(const std::vector<double>& errors, const ErrorStats& stats,
+                            const std::string& what, const std::vector<double>& times) {
+  for (size_t k = 0; k < errors.size(); ++k) {
+    if (std::isfinite(errors[k])) continue;
+    std::ostringstream why;
+    why << std::fixed << std::setprecision(6) << what << " not finite";
+    if (k < times.size()) why << " at estimate time " << times[k];
+    return why.str() + " (coordinates too large to compute with)";
+  }
+  if (!Finite(stats))
+    return what + " statistics not finite (coordinates too large to compute with)";
+  return "";
+}
+
 }  // namespace
 
 std::string DescribeDelta(const EvaluationOptions& o) {
@@ -93,10 +114,12 @@ DeltaUnit ParseDeltaUnit(const std::string& name) {
 }
 
 void EvaluationOptions::Check() const {
-  if (!(max_dt_s > 0)) throw std::invalid_argument("EvaluationOptions.max_dt_s must be > 0 s");
+  if (!(max_dt_s > 0 && std::isfinite(max_dt_s)))
+    throw std::invalid_argument("EvaluationOptions.max_dt_s must be a finite number > 0 s");
   if (!std::isfinite(t_offset_s))
     throw std::invalid_argument("EvaluationOptions.t_offset_s must be a finite number of s");
-  if (!(delta > 0)) throw std::invalid_argument("EvaluationOptions.delta must be > 0");
+  if (!(delta > 0 && std::isfinite(delta)))
+    throw std::invalid_argument("EvaluationOptions.delta must be a finite number > 0");
   if (delta_unit == DeltaUnit::kFrames && delta != std::floor(delta))
     throw std::invalid_argument("EvaluationOptions.delta must be a whole number of frames");
   if (align_first < 0 || align_first == 1 || align_first == 2)
@@ -219,7 +242,8 @@ AteResult ComputeAte(const std::vector<StampedPose>& gt, const std::vector<Stamp
     r.pose_errors_m[k] = (r.gt_from_est * (r.scale * p_est.col(k)) - p_gt.col(k)).norm();
   }
   r.error_m = ComputeStats(r.pose_errors_m);
-  r.success = true;
+  r.reason = NonFiniteReason(r.pose_errors_m, r.error_m, "position error", r.pose_times_s);
+  r.success = r.reason.empty();
   return r;
 }
 
@@ -323,7 +347,14 @@ RpeResult ComputeRpe(const std::vector<StampedPose>& gt, const std::vector<Stamp
   r.trans_m = ComputeStats(trans);
   r.rot_deg = ComputeStats(rot);
   r.success = r.pairs > 0;
-  if (!r.success) {
+  if (r.success) {
+    std::vector<double> times;
+    for (const RpePair& p : pairs) times.push_back(est[p.i].timestamp);
+    r.reason = NonFiniteReason(trans, r.trans_m, "relative translation error", times);
+    if (r.reason.empty())
+      r.reason = NonFiniteReason(rot, r.rot_deg, "relative rotation error", times);
+    r.success = r.reason.empty();
+  } else {
     std::ostringstream why;
     why << "no pose pairs " << DescribeDelta(options);
     if (options.delta_unit == DeltaUnit::kSeconds)

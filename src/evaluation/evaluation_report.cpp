@@ -1,6 +1,7 @@
 #include "rgbdvo/evaluation/evaluation_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -24,28 +25,22 @@ std::string JsonString(const std::string& s) {
   return out.str() + '"';
 }
 
-// The statistics, or null for each when they could not be computed (no pose or pair): a reader
-// must not mistake "not computed" for a perfect 0.
-std::string JsonStats(const ErrorStats& s, bool computed) {
-  std::ostringstream out;
-  out << std::setprecision(9);
-  const auto value = [&](double v) -> std::ostream& {
-    return computed ? (out << v) : (out << "null");
-  };
-  out << "{\"rmse\": ";
-  value(s.rmse) << ", \"mean\": ";
-  value(s.mean) << ", \"median\": ";
-  value(s.median) << ", \"max\": ";
-  value(s.max) << "}";
-  return out.str();
-}
-
-// A number, or null when it was not computed.
+// A number, or null when it was not computed or is not finite (JSON has no inf or nan; the
+// reason is given beside it).
 std::string JsonNumber(double v, bool computed) {
-  if (!computed) return "null";
+  if (!computed || !std::isfinite(v)) return "null";
   std::ostringstream out;
   out << std::setprecision(9) << v;
   return out.str();
+}
+
+// The statistics, or null for each when they could not be computed (no pose or pair): a reader
+// must not mistake "not computed" for a perfect 0.
+std::string JsonStats(const ErrorStats& s, bool computed) {
+  return "{\"rmse\": " + JsonNumber(s.rmse, computed) +
+         ", \"mean\": " + JsonNumber(s.mean, computed) +
+         ", \"median\": " + JsonNumber(s.median, computed) +
+         ", \"max\": " + JsonNumber(s.max, computed) + "}";
 }
 
 // "1s", "5f", "0.5m": the step in the table's row names.
@@ -161,10 +156,11 @@ std::string EvaluationReport::Json() const {
     << ", \"groundtruth_poses\": " << groundtruth_poses
     << ", \"estimate_poses\": " << estimate_poses
     << ", \"groundtruth_repeated\": " << groundtruth_repeated
-    << ", \"estimate_repeated\": " << estimate_repeated << ", \"max_dt_s\": " << options.max_dt_s
-    << ", \"t_offset_s\": " << options.t_offset_s
+    << ", \"estimate_repeated\": " << estimate_repeated
+    << ", \"max_dt_s\": " << JsonNumber(options.max_dt_s, true)
+    << ", \"t_offset_s\": " << JsonNumber(options.t_offset_s, true)
     << ", \"delta_s\": " << JsonNumber(options.delta, options.delta_unit == DeltaUnit::kSeconds)
-    << ", \"delta\": " << options.delta
+    << ", \"delta\": " << JsonNumber(options.delta, true)
     << ", \"delta_unit\": " << JsonString(DeltaUnitName(options.delta_unit))
     << ", \"align\": " << JsonString(AlignmentName(options.align))
     << ", \"align_first\": " << options.align_first

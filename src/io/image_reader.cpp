@@ -19,6 +19,7 @@
 
 #include "rgbdvo/io/opencv_codecs.hpp"
 #include "rgbdvo/io/png_decoder.hpp"
+#include "rgbdvo/util/input_file.hpp"
 #include "rgbdvo/util/simd.hpp"
 
 namespace rgbdvo {
@@ -343,6 +344,8 @@ cv::Mat ReadImage(const std::string& path, int imread_flags) {
   // The file's bytes, in a buffer kept per thread that grows and never shrinks: a fresh vector
   // (or one resized from a smaller image) would zero every byte before reading it.
   thread_local std::vector<uint8_t> buffer;
+  // Checked first: fopen() opens a folder, whose size then reads as absurdly large.
+  if (!InputFileSize(path, "image file")) return cv::Mat();
   size_t size = 0;
   if (FILE* f = std::fopen(path.c_str(), "rb")) {
     if (std::fseek(f, 0, SEEK_END) == 0) {

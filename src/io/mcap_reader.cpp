@@ -9,7 +9,10 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
+
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 
@@ -428,10 +431,9 @@ struct McapReader::Chunk {
 McapReader::McapReader(const std::string& path, const McapReaderOptions& options)
     : path_(path), options_(options) {
   options_.Check();
-  std::error_code error;
-  file_size_ = std::filesystem::file_size(path, error);
-  if (error || !std::filesystem::is_regular_file(path))
-    throw std::runtime_error(path + ": cannot open the MCAP file");
+  const std::optional<uint64_t> size = InputFileSize(path, "MCAP file");
+  if (!size) throw std::runtime_error(path + ": cannot open the MCAP file");
+  file_size_ = *size;
   file_ = std::fopen(path.c_str(), "rb");
   if (!file_) throw std::runtime_error(path + ": cannot open the MCAP file");
   std::array<uint8_t, 8> magic{};

@@ -9,6 +9,7 @@
 
 #include "rgbdvo/io/mcap_reader.hpp"
 #include "rgbdvo/io/rosbag2_sqlite.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 
@@ -95,6 +96,7 @@ class Ros2BagReader::SqliteStorage : public Storage {
 namespace {
 
 bool StartsWith(const std::string& path, const std::string& magic) {
+  if (!InputFileSize(path, "bag file")) return false;
   std::ifstream in(path, std::ios::binary);
   std::string head(magic.size(), '\0');
   return in.read(head.data(), static_cast<std::streamsize>(head.size())) && head == magic;

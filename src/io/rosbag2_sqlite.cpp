@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "rgbdvo/util/input_file.hpp"
+
 namespace rgbdvo {
 namespace {
 
@@ -16,7 +18,7 @@ std::string Text(sqlite3_stmt* statement, int column) {
 }  // namespace
 
 Rosbag2SqliteReader::Rosbag2SqliteReader(const std::string& path) : path_(path) {
-  if (!std::filesystem::is_regular_file(path))
+  if (!InputFileSize(path, "rosbag2 sqlite3 file"))
     throw std::runtime_error(path + ": no such rosbag2 sqlite3 file");
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";

@@ -3,8 +3,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
+
+#include "rgbdvo/util/display_text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 
@@ -22,15 +25,14 @@ double ParseNumber(const std::string& field, const std::string& where) {
   errno = 0;
   const double x = std::strtod(begin, &end);
   if (t.empty() || end != begin + t.size())
-    throw std::runtime_error(where + ": '" + t + "' is not a number");
+    throw std::runtime_error(where + ": '" + Excerpt(t) + "' is not a number");
   if (errno == ERANGE || !std::isfinite(x))
-    throw std::runtime_error(where + ": '" + t + "' is not finite");
+    throw std::runtime_error(where + ": '" + Excerpt(t) + "' is not finite");
   return x;
 }
 
 std::vector<ListLine> ReadListLines(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open " + what);
+  std::istringstream in(ReadTextFile(path, what, kMaxListFileBytes));
   std::vector<ListLine> lines;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {

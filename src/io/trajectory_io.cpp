@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "rgbdvo/io/text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -30,8 +31,7 @@ std::vector<std::string> Split(const std::string& line, bool csv) {
 }  // namespace
 
 Trajectory ReadTrajectory(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open trajectory file");
+  std::istringstream in(ReadTextFile(path, "trajectory file", kMaxTrajectoryFileBytes));
   Trajectory traj;
   traj.path = path;
   static const char* kNames[] = {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};

@@ -128,7 +128,26 @@ Odometry::Odometry(const OdometryOptions& options, const Calibration& calib)
 
 Odometry::~Odometry() = default;
 
+void Odometry::CheckImageSize(const Frame& frame) {
+  const cv::Size size = frame.bgr.size();
+  const auto text = [](const cv::Size& s) {
+    return std::to_string(s.width) + "x" + std::to_string(s.height);
+  };
+  const std::string where =
+      frame.name.empty() ? "frame " + std::to_string(frame.index) : frame.name;
+  if (size.empty()) throw std::runtime_error(where + ": empty image");
+  if (size.width < kMinImageSize.width || size.height < kMinImageSize.height)
+    throw std::runtime_error(where + ": image " + text(size) +
+                             " is too small to process (at least " + text(kMinImageSize) +
+                             " pixels)");
+  if (image_size_.empty()) image_size_ = size;
+  if (size != image_size_)
+    throw std::runtime_error(where + ": image " + text(size) + ", but the first frame's is " +
+                             text(image_size_) + " (a recording's images are all one size)");
+}
+
 FrameResult Odometry::Process(Frame frame) {
+  CheckImageSize(frame);
   if (ExtractsLazily()) return InColorCamera(tracker_->Track(std::move(frame), std::nullopt));
   const Stopwatch t0;
   Features features = extractor().Extract(frame.bgr);
@@ -139,6 +158,7 @@ FrameResult Odometry::Process(Frame frame) {
 }
 
 FrameResult Odometry::Process(Frame frame, Features features) {
+  CheckImageSize(frame);
   return InColorCamera(tracker_->Track(std::move(frame), std::move(features)));
 }
 

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "rgbdvo/io/text.hpp"
+#include "rgbdvo/util/display_text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -245,7 +246,7 @@ std::string FormatParameter(ParameterRef field) {
 void ParseParameter(const char* key, const std::string& text, ParameterRef field) {
   const std::string value = Trim(text);
   const auto bad = [&](const std::string& what) {
-    return std::invalid_argument(std::string(key) + ": '" + value + "' is not " + what);
+    return std::invalid_argument(std::string(key) + ": '" + Excerpt(value) + "' is not " + what);
   };
   std::visit(
       [&](auto* target) {
@@ -338,7 +339,7 @@ bool RetiredAtItsDefault(const std::string& key, const std::string& value,
   for (const RetiredParameter& r : kRetired) {
     if (key != r.key) continue;
     if (value == r.default_value) return true;
-    throw std::runtime_error(where + ": parameter '" + key + "' was removed (" + r.why +
+    throw std::runtime_error(where + ": parameter '" + Excerpt(key) + "' was removed (" + r.why +
                              "); delete the line");
   }
   return false;
@@ -357,14 +358,14 @@ void ApplyConfig(
     if (content.empty()) continue;
     const size_t eq = content.find('=');
     if (eq == std::string::npos)
-      throw std::runtime_error(where + ": expected 'key = value', got '" + content + "'");
+      throw std::runtime_error(where + ": expected 'key = value', got '" + Excerpt(content) + "'");
     const std::string key = CurrentKey(Trim(content.substr(0, eq)));
     if (RetiredAtItsDefault(key, Trim(content.substr(eq + 1)), where)) continue;
     try {
       if (other && other(key, content.substr(eq + 1))) continue;
       const OdometryParameter* p = FindParameter(key);
       if (!p)
-        throw std::runtime_error(where + ": unknown parameter '" + key +
+        throw std::runtime_error(where + ": unknown parameter '" + Excerpt(key) +
                                  "' (`rgbdvo run --dump-config` lists them)");
       p->Set(content.substr(eq + 1), options);
     } catch (const std::invalid_argument& e) {
@@ -377,8 +378,7 @@ void ApplyConfig(
 void ApplyConfigFile(
     const std::string& path, OdometryOptions* options,
     const std::function<bool(const std::string& key, const std::string& value)>& other) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the configuration file");
+  std::istringstream in(ReadTextFile(path, "configuration file", kMaxConfigFileBytes));
   ApplyConfig(in, path, options, other);
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -14,6 +13,9 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "rgbdvo/util/display_text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -61,7 +63,7 @@ class CalibrationYaml {
       const std::string key = Trim(content.substr(indent, colon - indent));
       const std::string value = Trim(content.substr(colon + 1));
       if (key.empty() || key.find_first_of(" \t\"'[]{}") != std::string::npos)
-        throw Error("bad key '" + key + "'");
+        throw Error("bad key '" + Excerpt(key) + "'");
       std::map<std::string, YamlNode>* into = &top_;
       if (indent > 0) {
         if (!block) throw Error("indented line outside a matrix block");
@@ -69,7 +71,7 @@ class CalibrationYaml {
       } else {
         block = nullptr;
       }
-      if (into->count(key)) throw Error("'" + key + "' given twice");
+      if (into->count(key)) throw Error("'" + Excerpt(key) + "' given twice");
       YamlNode& node = (*into)[key];
       node.line = line_;
       if (value.rfind('[', 0) == 0) {
@@ -93,6 +95,7 @@ class CalibrationYaml {
     const auto it = top_.find(key);
     return it == top_.end() ? nullptr : &it->second;
   }
+  const std::map<std::string, YamlNode>& top() const { return top_; }
 
  private:
   std::runtime_error Error(const std::string& what) const {
@@ -119,7 +122,7 @@ class CalibrationYaml {
   void ParseScalar(const std::string& value, YamlNode* node) const {
     if (value.empty() || value[0] != '"') {
       if (value.find_first_of("[]{}\"") != std::string::npos)
-        throw Error("bad value '" + value + "'");
+        throw Error("bad value '" + Excerpt(value) + "'");
       node->scalar = value;
       return;
     }
@@ -139,7 +142,7 @@ class CalibrationYaml {
     for (std::string item; std::getline(items, item, ',');) {
       item = Trim(item);
       if (item.empty() || item.find_first_of("[{") != std::string::npos)
-        throw Error("bad list item '" + item + "'");
+        throw Error("bad list item '" + Excerpt(item) + "'");
       node->items.push_back(item);
     }
     list_text_.clear();
@@ -244,6 +247,21 @@ Calibration FromCalibrationFields(const CalibrationYaml& yaml, const std::string
 // camera (the identity mapping), the default depth range unless min_depth_m/max_depth_m are
 // added.
 Calibration FromCameraInfo(const CalibrationYaml& yaml, const std::string& path) {
+  // Shape and data that disagree were edited wrong, and which of the two is right is unknown.
+  for (const auto& [key, node] : yaml.top()) {
+    const auto rows = node.children.find("rows"), cols = node.children.find("cols");
+    const auto data = node.children.find("data");
+    if (!node.is_map || rows == node.children.end() || cols == node.children.end() ||
+        data == node.children.end())
+      continue;
+    const std::optional<double> r = Number(rows->second.scalar), c = Number(cols->second.scalar);
+    if (!r || !c || *r < 0 || *c < 0 || *r != std::floor(*r) || *c != std::floor(*c) ||
+        *r * *c != double(data->second.items.size()))
+      throw std::runtime_error(path + ":" + std::to_string(node.line) + ": field '" + Excerpt(key) +
+                               "' has " + std::to_string(data->second.items.size()) +
+                               " values in its data but rows " + Excerpt(rows->second.scalar) +
+                               ", cols " + Excerpt(cols->second.scalar));
+  }
   Calibration c;
   const std::vector<double> K =
       ReadMatrix(*yaml.Find("camera_matrix"), "camera_matrix", 3, 3, path);
@@ -251,7 +269,7 @@ Calibration FromCameraInfo(const CalibrationYaml& yaml, const std::string& path)
   const YamlNode* model = yaml.Find("distortion_model");
   const std::string name = model ? model->scalar : "plumb_bob";
   if (name != "plumb_bob" && name != "rational_polynomial")
-    throw std::runtime_error(path + ": distortion_model '" + name +
+    throw std::runtime_error(path + ": distortion_model '" + Excerpt(name) +
                              "' not supported (plumb_bob, rational_polynomial)");
   if (const YamlNode* d = yaml.Find("distortion_coefficients")) {
     const auto data = d->children.find("data");
@@ -289,16 +307,7 @@ void Calibration::Check() const {
 
 Calibration LoadCalibration(const std::string& path) {
   // A calibration is a page of text; a larger file is not one (and would be parsed whole).
-  constexpr std::uintmax_t kMaxBytes = 1 << 20;
-  std::error_code ec;
-  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-  if (ec) throw std::runtime_error(path + ": cannot open calibration file (" + ec.message() + ")");
-  if (bytes > kMaxBytes)
-    throw std::runtime_error(path + ": " + std::to_string(bytes) +
-                             " bytes, too large for a calibration file (at most 1 MiB)");
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in && !in.eof()) throw std::runtime_error(path + ": cannot read calibration file");
+  const std::string text = ReadTextFile(path, "calibration file", kMaxConfigFileBytes);
   // A calibration is text: control bytes are refused before anything else.
   for (size_t i = 0; i < text.size(); ++i) {
     const auto byte = static_cast<unsigned char>(text[i]);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "rgbdvo/sensor/calibration.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -60,6 +61,8 @@ std::string FindCalibration(const std::string& name_or_path) {
         if (fs::is_regular_file(candidate, ec)) return candidate.string();
       }
   }
+  // Something there, but not a file: say what it is (a folder, a FIFO) rather than "no such file".
+  if (fs::exists(name_or_path, ec)) InputFileSize(name_or_path, "calibration file");
   std::string where;
   for (const std::string& folder : folders) where += (where.empty() ? "" : ", ") + folder;
   throw std::runtime_error("calibration '" + name_or_path +

@@ -7,6 +7,7 @@
 
 #include "rgbdvo/io/text.hpp"
 #include "rgbdvo/sensor/kinect_accelerometer.hpp"
+#include "rgbdvo/util/display_text.hpp"
 
 namespace rgbdvo {
 
@@ -51,7 +52,7 @@ std::vector<AccelReading> ReadTumAccelerometer(const std::string& path) {
     Eigen::Vector3d a;
     if (!(fields >> t >> a.x() >> a.y() >> a.z()) || !std::isfinite(t) || !a.allFinite())
       throw std::runtime_error(path + ":" + std::to_string(line.number) +
-                               ": expected 'timestamp ax ay az', got '" + line.text + "'");
+                               ": expected 'timestamp ax ay az', got '" + Excerpt(line.text) + "'");
     readings.push_back({t, ApparentGravityFromKinectAccel(a)});
   }
   return readings;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "rgbdvo/io/text.hpp"
+#include "rgbdvo/util/display_text.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -34,8 +36,8 @@ std::vector<TumPair> ReadAssociations(const std::string& path) {
     TumPair pair;
     if (!ParseAssociation(line.text, &pair))
       throw std::runtime_error(path + ":" + std::to_string(line.number) +
-                               ": expected 't_rgb rgb_path t_depth depth_path', got '" + line.text +
-                               "'");
+                               ": expected 't_rgb rgb_path t_depth depth_path', got '" +
+                               Excerpt(line.text) + "'");
     pairs.push_back(pair);
   }
   if (pairs.empty()) throw std::runtime_error(path + ": empty association file (no pair)");
@@ -48,6 +50,7 @@ bool IsAssociationFile(const std::string& path) {
   std::string line;
   for (int n = 0; n < 1000 && std::getline(in, line); ++n) {
     if (line.size() > 4096) return false;
+    if (n == 0) line = WithoutByteOrderMark(line);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (!IsContent(line)) continue;
     TumPair pair;

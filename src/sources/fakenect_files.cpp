@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "rgbdvo/sensor/kinect_accelerometer.hpp"
+#include "rgbdvo/util/input_file.hpp"
 
 namespace rgbdvo {
 namespace {
@@ -38,6 +39,7 @@ std::optional<int64_t> ParseSeconds(const std::string& s) {
 }
 
 std::string ReadWholeFile(const std::string& path, const char* what) {
+  InputFileSize(path, what);  // a FIFO would block the open
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot open " + what + " (missing?)");
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -137,8 +139,7 @@ FakenectName MakeFakenectName(char type, int64_t wallclock_us, uint32_t device_t
 }
 
 std::vector<std::string> ReadFakenectIndex(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open index file");
+  std::istringstream in(ReadTextFile(path, "index file", kMaxListFileBytes));
   std::vector<std::string> names;
   for (std::string line; std::getline(in, line);) {
     const size_t first = line.find_first_not_of(" \t\r");

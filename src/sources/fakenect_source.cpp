@@ -10,6 +10,7 @@
 #include "rgbdvo/sensor/kinect_depth.hpp"
 #include "rgbdvo/sources/fakenect_files.hpp"
 #include "rgbdvo/sources/stream_pairer.hpp"
+#include "rgbdvo/util/display_text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -72,8 +73,8 @@ FakenectSource::FakenectSource(const std::string& folder, const FakenectSourceOp
   for (size_t i = 0; i < names.size(); ++i) {
     const std::optional<FakenectName> name = ParseFakenectName(names[i]);
     if (!name)
-      throw std::runtime_error(index + ": entry " + std::to_string(i + 1) + " '" + names[i] +
-                               "' is not <r|d|a>-<seconds>-<timestamp>.<ext>");
+      throw std::runtime_error(index + ": entry " + std::to_string(i + 1) + " '" +
+                               Excerpt(names[i]) + "' is not <r|d|a>-<seconds>-<timestamp>.<ext>");
     if (!fs::is_regular_file(fs::path(folder) / names[i]) && missing++ == 0)
       first_missing = names[i];
     parsed.push_back(*name);

@@ -10,6 +10,7 @@
 #include "rgbdvo/io/image_reader.hpp"
 #include "rgbdvo/io/text.hpp"
 #include "rgbdvo/sensor/depth_encoding.hpp"
+#include "rgbdvo/util/display_text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +30,7 @@ std::vector<TumListEntry> ReadTumList(const std::string& path) {
     TumListEntry e;
     if (!(fields >> e.timestamp >> e.path) || !std::isfinite(e.timestamp))
       throw std::runtime_error(path + ":" + std::to_string(line.number) +
-                               ": expected 'timestamp path', got '" + line.text + "'");
+                               ": expected 'timestamp path', got '" + Excerpt(line.text) + "'");
     entries.push_back(e);
   }
   return entries;

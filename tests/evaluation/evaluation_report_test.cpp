@@ -101,3 +101,44 @@ TEST_CASE("Several estimates: one row each; JSON has null where nothing was comp
   CHECK_THAT(json, Catch::Contains("\"matched\": 2, \"aligned_on\": 0, \"scale\": null"));
   CHECK_THAT(json, Catch::Contains("\"align\": \"sim3\""));
 }
+
+TEST_CASE("Coordinates too large to compute with give n/a and a reason, JSON null, never inf") {
+  const std::string dir = MakeTempDir("eval_huge");
+  const std::vector<StampedPose> gt = CurvyPath();
+  WriteTumTrajectory(dir + "/gt.txt", gt);
+  // One row at 1e308 m, and every row at 1e200 m: errors whose squares overflow.
+  std::ofstream(dir + "/far.txt") << "100.0 1e308 0 0 0 0 0 1\n";
+  {
+    std::ofstream far(dir + "/far.txt", std::ios::app);
+    for (size_t k = 1; k < gt.size(); ++k) WriteTumLine(far, gt[k].timestamp, gt[k].world_from_cam);
+  }
+  WriteTumTrajectory(dir + "/big.txt", Scaled(gt, 1e200));
+  EvaluationOptions none;
+  none.align = Alignment::kNone;
+  for (const auto& [name, options] :
+       {std::make_pair("/far.txt", EvaluationOptions()), std::make_pair("/big.txt", none)}) {
+    const EvaluationReport report = EvaluateFiles(dir + "/gt.txt", dir + name, options);
+    // The folder's random name left out: it may hold the letters looked for.
+    const auto text = [&](std::string t) {
+      for (size_t at; (at = t.find(dir)) != std::string::npos;) t.replace(at, dir.size(), "DIR");
+      return t;
+    };
+    const std::string json = text(report.Json()), table = text(report.Table());
+    INFO(name << "\n" << json << table);
+    CHECK_THAT(json, !Catch::Contains("inf") && !Catch::Contains("nan"));
+    CHECK_THAT(table, !Catch::Contains("inf") && !Catch::Contains("nan"));
+    CHECK(!report.ate.success);
+    CHECK_THAT(report.ate.reason, Catch::Contains("not finite"));
+    CHECK_THAT(json, Catch::Contains("\"error_m\": {\"rmse\": null") &&
+                         Catch::Contains("\"reason\": \"position error"));
+    CHECK_THAT(table, Catch::Contains("n/a (position error"));
+    CHECK_THAT(text(ComparisonTable({report})), !Catch::Contains("inf") && !Catch::Contains("nan"));
+  }
+  // Options printed in the JSON are finite too.
+  EvaluationOptions bad;
+  bad.max_dt_s = INFINITY;
+  CHECK_THROWS_WITH(bad.Check(), Catch::Contains("max_dt_s"));
+  bad = EvaluationOptions();
+  bad.delta = INFINITY;
+  CHECK_THROWS_WITH(bad.Check(), Catch::Contains("delta"));
+}

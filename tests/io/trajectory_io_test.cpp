@@ -106,6 +106,10 @@ TEST_CASE("Bad trajectory rows are errors naming file and line") {
   CHECK_THAT(ErrorOf(path),
              Catch::Contains(path + ":1:") && Catch::Contains("tz: 'abc' is not a number"));
 
+  path = WriteFile("inf.txt", "1 0 0 0 0 0 0 1\n2 inf 0 0 0 0 0 1\n3 0 nan 0 0 0 0 1\n");
+  CHECK_THAT(ErrorOf(path),
+             Catch::Contains(path + ":2:") && Catch::Contains("tx: 'inf' is not finite"));
+
   path = WriteFile("zero_q.txt", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 0\n");
   CHECK_THAT(ErrorOf(path), Catch::Contains(path + ":2:") && Catch::Contains("zero norm"));
 

@@ -200,6 +200,15 @@ TEST_CASE("A ROS camera_info YAML file is read as the camera of registered depth
   std::ofstream(dir + "/bad_k.yaml") << "camera_matrix:\n  rows: 3\n  cols: 3\n  data: [500, 0]\n";
   CHECK_THROWS_WITH(LoadCalibration(dir + "/bad_k.yaml"),
                     Catch::Contains("bad_k.yaml") && Catch::Contains("camera_matrix"));
+
+  // A shape its data does not fill: cols edited to 14 with 5 coefficients left.
+  std::ofstream(dir + "/cols.yaml")
+      << "camera_matrix:\n  rows: 3\n  cols: 3\n  data: [500, 0, 320, 0, 500, 240, 0, 0, 1]\n"
+         "distortion_model: plumb_bob\n"
+         "distortion_coefficients:\n  rows: 1\n  cols: 14\n  data: [0.1, 0, 0, 0, 0]\n";
+  CHECK_THROWS_WITH(LoadCalibration(dir + "/cols.yaml"),
+                    Catch::Contains("cols.yaml:6: field 'distortion_coefficients' has 5 values") &&
+                        Catch::Contains("rows 1, cols 14"));
   std::filesystem::remove_all(dir);
 }
 

@@ -81,7 +81,8 @@ struct AteResult {
 // ATE: positions matched by AssociateByTime (estimate timestamps + t_offset), the estimate
 // brought onto the ground truth by options.align fitted to the first align_first matches, the
 // position error of every match. success=false with a reason for fewer than 3 matches (1 for
-// kOrigin and kNone) or a scale that cannot be fitted (an estimate that does not move).
+// kOrigin and kNone), a scale that cannot be fitted (an estimate that does not move) or errors
+// that are not finite (coordinates so large that an error or its square overflows).
 // ComputeAte and ComputeRpe take the ground truth sorted by time with unique timestamps (as
 // ReadTrajectory returns it); the estimate in any order, of repeated times the last pose counts.
 AteResult ComputeAte(const std::vector<StampedPose>& groundtruth,
@@ -107,6 +108,7 @@ struct RpeResult {
 // - kFrames: the poses matched by AssociateByTime in time order, pairs (k, k + delta).
 // - kMetres: the same matched sequence; for every k, the l > k whose ground truth path length
 //   from k is nearest to delta, kept when within 10% of delta.
+// success=false with a reason for no pair or errors that are not finite (as ComputeAte).
 RpeResult ComputeRpe(const std::vector<StampedPose>& groundtruth,
                      const std::vector<StampedPose>& estimate, const EvaluationOptions& options,
                      double scale = 1.0);

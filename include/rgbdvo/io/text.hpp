@@ -21,7 +21,9 @@ struct ListLine {
   std::string text;
 };
 // The content lines of a list file (TUM's rgb.txt and accelerometer.txt, association files):
-// blank lines and '#' comments skipped. Throws std::runtime_error "<path>: cannot open <what>".
+// blank lines and '#' comments skipped, a UTF-8 byte order mark at the start ignored. Throws
+// ReadTextFile's errors ("<path>: cannot open <what> (<reason>)", not a regular file, above
+// kMaxListFileBytes).
 std::vector<ListLine> ReadListLines(const std::string& path, const std::string& what);
 
 }  // namespace rgbdvo

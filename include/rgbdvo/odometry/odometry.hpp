@@ -244,6 +244,9 @@ struct FrameResult {
 // still measured, not lost.
 class Tracker;
 
+// The smallest image processed: the depth fallback halves it, then builds an image pyramid.
+inline const cv::Size kMinImageSize(64, 48);
+
 class Odometry {
  public:
   Odometry(const OdometryOptions& options, const Calibration& calib);
@@ -253,6 +256,8 @@ class Odometry {
   // Extracts features from frame.bgr, then as below. The odometry keeps the frame's depth
   // image for the frames after it: a copy, or the image itself where the call holds the only
   // reference to it (a frame handed over with std::move, whose images nothing else refers to).
+  // Throws std::runtime_error naming frame.name for an image smaller than kMinImageSize or of
+  // another size than the first frame's.
   FrameResult Process(Frame frame);
   // With features already extracted from frame.bgr (e.g. on another thread).
   FrameResult Process(Frame frame, Features features);
@@ -278,7 +283,9 @@ class Odometry {
  private:
   // r (from the tracker, in the IR camera's frame) moved to the colour camera.
   FrameResult InColorCamera(FrameResult r) const;
+  void CheckImageSize(const Frame& frame);
 
+  cv::Size image_size_;  // the first frame's
   OdometryOptions options_;
   Calibration calib_;  // as used: without distortion unless options.undistort
   std::unique_ptr<Tracker> tracker_;
