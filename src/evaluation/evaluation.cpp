@@ -349,6 +349,7 @@ RpeResult ComputeRpe(const std::vector<StampedPose>& gt, const std::vector<Stamp
   r.success = r.pairs > 0;
   if (r.success) {
     std::vector<double> times;
+    times.reserve(pairs.size());
     for (const RpePair& p : pairs) times.push_back(est[p.i].timestamp);
     r.reason = NonFiniteReason(trans, r.trans_m, "relative translation error", times);
     if (r.reason.empty())

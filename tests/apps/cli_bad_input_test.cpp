@@ -82,7 +82,6 @@ TEST_CASE("Unclear messages made clear: tiny images, folders as images, long lin
   WriteTumSequence(dir, SyntheticScene(), PinholeCamera(), MakeSmoothPath(2));
   const std::string calib = Calib(dir);
   const std::string rgb = dir + "/rgb.txt", depth = dir + "/depth.txt";
-  const std::string rgb_list = Slurp(rgb), depth_list = Slurp(depth);
   const std::vector<TumListEntry> frames = ReadTumList(rgb);
   const std::vector<TumListEntry> depths = ReadTumList(depth);
   REQUIRE(frames.size() == 2);
@@ -133,7 +132,7 @@ TEST_CASE("A UTF-8 byte order mark at the start of a text input is skipped") {
   WriteTumSequence(dir, SyntheticScene(), PinholeCamera(), MakeSmoothPath(3));
   const std::string bom = "\xEF\xBB\xBF";
   const std::string rgb_list = Slurp(dir + "/rgb.txt"), depth_list = Slurp(dir + "/depth.txt");
-  REQUIRE(rgb_list.rfind("#", 0) == 0);  // starts with a comment line
+  REQUIRE(rgb_list.rfind('#', 0) == 0);  // starts with a comment line
   std::ofstream(dir + "/rgb.txt") << bom << rgb_list;
   std::ofstream(dir + "/depth.txt") << bom << depth_list;
   std::ofstream(dir + "/calib_bom.yaml") << bom << Slurp(Calib(dir));

@@ -21,7 +21,7 @@ std::string Rgbdvo(const std::string& args, int* code) {
 
 }  // namespace
 
-TEST_CASE("rgbdvo eval: ground truth against itself has zero error; --json is one object") {
+TEST_CASE("rgbdvo eval: ground truth against itself has zero error, --json is one object") {
   const std::string gt = SourceDir() + "/data/tum_fr1_xyz_first30/groundtruth.txt";
   int code = 0;
   std::string out = Rgbdvo("eval " + gt + " " + gt, &code);

@@ -208,7 +208,7 @@ TEST_CASE("rgbdvo --version prints the version and a bad command line exits 2") 
 }
 
 TEST_CASE(
-    "rgbdvo run stops on SIGTERM and SIGINT after the frame in hand; after SIGKILL every row is "
+    "rgbdvo run stops on SIGTERM and SIGINT after the frame in hand, after SIGKILL every row is "
     "whole") {
   // SIGKILL cannot be handled: the process dies at once, yet every row on disk is whole (each is
   // written by one flush) and the files end with a line end.
@@ -338,7 +338,7 @@ TEST_CASE("rgbdvo run --start/--max-frames runs a part, keeping the recording's 
   CHECK_THAT(out, Catch::Contains("start frame 6 is beyond the recording's end (it has 6 frames)"));
 }
 
-TEST_CASE("The installed rgbdvo has no test-only flags; its test build has") {
+TEST_CASE("The installed rgbdvo has no test-only flags, its test build has") {
   const std::string run = " run " + SourceDir() + "/data/tum_fr1_desk_turn24 --calib " +
                           SourceDir() + "/calib/tum_fr1.yaml --max-frames 2 --quiet" +
                           " --debug-frame-delay-ms 1";

@@ -71,7 +71,7 @@ TEST_CASE("Evaluation refuses no overlap and bad options, and reports too short 
   CHECK_THAT(r.Json(), Catch::Contains("\"error_m\": {\"rmse\": 0"));
 }
 
-TEST_CASE("Several estimates: one row each; JSON has null where nothing was computed") {
+TEST_CASE("Several estimates: one row each, JSON has null where nothing was computed") {
   const std::string dir = MakeTempDir("eval_multi");
   const std::vector<StampedPose> gt = CurvyPath();
   WriteTumTrajectory(dir + "/gt.txt", gt);

@@ -114,7 +114,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "The warped refinement with the identity agrees with the shift; outside it leaves points") {
+    "The warped refinement with the identity agrees with the shift, outside it leaves points") {
   TrackOptions options;
   options.warp_min_px = 0;  // refined even where the warp is a shift
   const cv::Mat a = Texture(240, 320, 7);
@@ -155,7 +155,7 @@ TEST_CASE(
   CHECK(*shifted[0] == cv::Point2f(102.8f, 98.1f));
 }
 
-TEST_CASE("Nothing to track gives nothing; an empty image is refused") {
+TEST_CASE("Nothing to track gives nothing, an empty image is refused") {
   const TrackOptions options;
   const TrackingPyramid p = MakeTrackingPyramid(options, Texture(64, 64, 1), true);
   CHECK(TrackPoints(options, p, p, {}, {}).empty());

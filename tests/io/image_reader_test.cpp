@@ -276,7 +276,7 @@ TEST_CASE("ReadImage refuses a PNG claiming more pixels than any sensor before a
   CHECK_THAT(s.reason, Catch::Contains("too short"));
 }
 
-TEST_CASE("ReadImage refuses a JPEG claiming more pixels than any sensor; reads a normal one") {
+TEST_CASE("ReadImage refuses a JPEG claiming more pixels than any sensor, reads a normal one") {
   const std::string dir = test::MakeTempDir("jpeg_size");
   cv::Mat img(48, 64, CV_8UC3, cv::Scalar(40, 90, 160));
   std::vector<uint8_t> jpeg;

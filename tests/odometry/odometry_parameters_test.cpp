@@ -106,7 +106,7 @@ TEST_CASE("A configuration file changes only the keys it names, in file order") 
   CHECK(o.ToString() == expected.ToString());
 }
 
-TEST_CASE("Every key is its field's path; renamed keys of earlier files still load") {
+TEST_CASE("Every key is its field's path, renamed keys of earlier files still load") {
   // A key names the field it sets: set through the key, the field's value changes.
   OdometryOptions o;
   FindParameter("guided_radius_px")->Set("12", &o);

@@ -72,7 +72,7 @@ TEST_CASE("A tilt beyond the bound within a second is announced when it starts a
   CHECK(check.off_plane_frames() == 60);  // frames 36-65 and 106-135
 }
 
-TEST_CASE("A climb beyond the bound is announced; frames without a 6-DOF pose are skipped") {
+TEST_CASE("A climb beyond the bound is announced, frames without a 6-DOF pose are skipped") {
   PlanarityCheck check(PlanarityCheckOptions{}, Eigen::Vector3d::UnitY());
   std::optional<std::string> first;
   Chain chain;

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "test_support.hpp"
@@ -38,7 +39,7 @@ std::vector<std::vector<double>> Rows(const std::string& path, char sep) {
     for (char& c : line) c = c == sep ? ' ' : c;
     std::istringstream fields(line);
     std::vector<double> v;
-    for (std::string f; fields >> f;) v.push_back(std::stod(f));  // status: 0
+    for (std::string f; fields >> f;) v.push_back(std::strtod(f.c_str(), nullptr));  // status: 0
     rows.push_back(v);
   }
   return rows;

@@ -40,7 +40,7 @@ TEST_CASE("CheckDepthScale finds a Kinect recording read at the wrong depth scal
   CHECK_THAT(*small, Catch::Contains("5.00 times too small") && Catch::Contains("by 0.20"));
 }
 
-TEST_CASE("CheckDepthScale: even steps are no Kinect's; depths out of range are reported") {
+TEST_CASE("CheckDepthScale: even steps are no Kinect's, depths out of range are reported") {
   // The synthetic world's depth is exact (no z^2 steps): nothing to say at the right range.
   const SyntheticScene scene;
   const PinholeCamera cam;

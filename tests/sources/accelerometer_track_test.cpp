@@ -31,7 +31,7 @@ TEST_CASE("Without a reading within the frame, the nearest within a period, else
   CHECK_FALSE(AccelerometerTrack().GravityAt(1.0));
 }
 
-TEST_CASE("TUM's accelerometer.txt is read in the camera frame; bad lines name the line") {
+TEST_CASE("TUM's accelerometer.txt is read in the camera frame, bad lines name the line") {
   const std::string dir = test::MakeTempDir("accel");
   {
     std::ofstream out(dir + "/accelerometer.txt");

@@ -44,7 +44,7 @@ std::string AssociationText(bool absolute) {
 
 }  // namespace
 
-TEST_CASE("Association files are read line by line; errors name the file and line") {
+TEST_CASE("Association files are read line by line, errors name the file and line") {
   const ScopedTempDir dir("rgbdvo_test_assoc_");
   const std::string path = dir.path() + "/a.txt";
   std::ofstream(path) << "# comment\n1.0 rgb/1.png 1.01 depth/1.png\r\n\n2.0 rgb/2.png 1.99 "
