@@ -67,7 +67,7 @@ int Capture(CaptureArgs& a) {
   a.kinect.stop = &StopOnSignals::Flag();
   a.kinect.pairing = ParsePairing(a.pairing);
   a.kinect.Check();
-  a.outputs.RefuseInputs({calib_path});
+  a.outputs.RefuseInputs({calib_path, a.configuration_flags->config_path()});
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
   const std::vector<std::unique_ptr<TrajectoryWriter> > writers = a.outputs.Open();

@@ -2,8 +2,11 @@
 // truth.
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "rgbdvo/evaluation/evaluation_plots.hpp"
 #include "rgbdvo/evaluation/evaluation_report.hpp"
 
@@ -59,6 +62,12 @@ void AddEvalCommand(CLI::App& app) {
                   "PNG: x, y, z, roll, pitch, yaw over time, ground truth and aligned estimates");
   cmd->add_option("--title", args->plot.title, "title of the figures (default: evaluation)");
   cmd->callback([args] {
+    std::vector<std::string> inputs = args->estimates;
+    inputs.push_back(args->groundtruth);
+    RefuseOutputsOntoInputs({{args->figures.trajectories, "--plot"},
+                             {args->figures.errors, "--plot-errors"},
+                             {args->figures.poses, "--plot-xyz"}},
+                            inputs);
     EvaluationOptions options = args->options;
     options.align = ParseAlignment(args->align);
     options.delta_unit = ParseDeltaUnit(args->delta_unit);

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "rgbdvo/evaluation/plot.hpp"
 
 namespace rgbdvo::cli {
@@ -23,6 +24,7 @@ void AddPlotCommand(CLI::App& app) {
   cmd->add_option("--max-dt", args->options.max_dt_s, "time matching for the alignment, s")
       ->capture_default_str();
   cmd->callback([args] {
+    RefuseOutputsOntoInputs({{args->png, "--png"}}, {args->estimate, args->groundtruth});
     PlotOptions options = args->options;
     if (options.title.empty()) options.title = args->estimate;
     const Trajectory estimate = ReadTrajectory(args->estimate);

@@ -53,7 +53,11 @@ int Run(const RunArgs& a) {
   Recording recording = OpenRecordingInput(recording_args);
   const Calibration& calib = recording.calib;
   const auto source = std::make_unique<FrameRangeSource>(std::move(recording.source), a.range);
-  a.outputs.RefuseInputs(recording.inputs);
+  std::vector<std::string> inputs = recording.inputs;
+  const std::vector<std::string> images = source->Files();
+  inputs.insert(inputs.end(), images.begin(), images.end());
+  inputs.push_back(a.configuration_flags->config_path());
+  a.outputs.RefuseInputs(inputs, {{a.plot, "--plot"}});
   // With a trajectory on standard output ("-"), everything else goes to stderr.
   std::ostream& info = a.outputs.UsesStdout() ? std::cerr : std::cout;
   if (a.outputs.csv.empty() && a.outputs.tum.empty() && a.outputs.kitti.empty() && a.plot.empty())
@@ -73,7 +77,7 @@ int Run(const RunArgs& a) {
   }
   LimitOpenCvThreads();
   Odometry odometry(odometry_options, calib);
-  const StopOnSignals stop_on_signals;
+  const StopOnSignals stop_on_signals(std::chrono::seconds(1));
   StoppableSource stoppable(*source);
   StatusLine status(a.quiet, stoppable.Size());
   const RunSummary summary = RunOdometry(

@@ -45,19 +45,20 @@ void AddFlags(CLI::App* cmd, const std::vector<Parameter<Options>>& parameters,
                    ->description("not " + name + (on_by_default ? "" : " (default)"))
                    ->group(group);
     } else {
-      g->on = cmd->add_option(name, g->text, help)
-                  ->group(group)
-                  ->type_name(TypeName(p))
-                  ->default_str(p.Get(defaults))
-                  ->check([&p](const std::string& value) {
-                    Options scratch;
-                    try {
-                      p.Set(value, &scratch);
-                    } catch (const std::invalid_argument& e) {
-                      return std::string(e.what());
-                    }
-                    return std::string();
-                  });
+      g->on =
+          cmd->add_option(name, g->text, help)
+              ->group(group)
+              ->type_name(p.IsNumber() ? TypeName(p) + " in " + FormatRange(p.range) : TypeName(p))
+              ->default_str(p.Get(defaults))
+              ->check([&p](const std::string& value) {
+                Options scratch;
+                try {
+                  p.Set(value, &scratch);
+                } catch (const std::invalid_argument& e) {
+                  return std::string(e.what());
+                }
+                return std::string();
+              });
     }
     given->push_back(std::move(g));
   }

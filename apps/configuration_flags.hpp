@@ -31,6 +31,8 @@ class ConfigurationFlags {
   bool dump_requested() const { return dump_; }
   // Resolve() as a configuration file (what --config reads), with a header naming its sources.
   std::string DumpConfig() const;
+  // --config's file, or empty: an input no output may overwrite.
+  const std::string& config_path() const { return config_; }
 
   struct Given {
     std::string text;            // the value of --NAME VALUE

@@ -59,30 +59,11 @@ std::vector<std::unique_ptr<TrajectoryWriter>> TrajectoryOutputs::Open() const {
   return writers;
 }
 
-void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs) const {
-  namespace fs = std::filesystem;
-  const auto same = [](const std::string& a, const std::string& b) {
-    std::error_code ec;
-    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
-  };
-  for (const std::string* out : {&csv, &tum, &kitti}) {
-    if (out->empty()) continue;
-    for (const std::string& in : inputs) {
-      std::error_code ec;
-      if (fs::exists(in, ec) && same(*out, in))
-        throw std::runtime_error(*out + ": is an input of this run (" + in +
-                                 "); write the trajectory elsewhere");
-    }
-  }
-  const std::pair<const std::string*, const char*> outputs[] = {
-      {&csv, "--csv"}, {&tum, "--tum"}, {&kitti, "--kitti"}};
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = i + 1; j < 3; ++j)
-      if (!outputs[i].first->empty() && !outputs[j].first->empty() &&
-          same(*outputs[i].first, *outputs[j].first))
-        throw std::runtime_error(*outputs[i].first + ": given for both " + outputs[i].second +
-                                 " and " + outputs[j].second);
+void TrajectoryOutputs::RefuseInputs(const std::vector<std::string>& inputs,
+                                     const std::vector<OutputPath>& others) const {
+  std::vector<OutputPath> outputs = {{csv, "--csv"}, {tum, "--tum"}, {kitti, "--kitti"}};
+  outputs.insert(outputs.end(), others.begin(), others.end());
+  RefuseOutputsOntoInputs(outputs, inputs);
 }
 
 void LimitOpenCvThreads() {
@@ -107,7 +88,7 @@ extern "C" void OnStopSignal(int signo) {
 }
 }  // namespace
 
-StopOnSignals::StopOnSignals() {
+StopOnSignals::StopOnSignals(std::chrono::milliseconds deadline) {
   g_stop = false;
   g_signal = 0;
   struct sigaction action = {};
@@ -115,9 +96,26 @@ StopOnSignals::StopOnSignals() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, &g_previous_int);
   sigaction(SIGTERM, &action, &g_previous_term);
+  if (deadline.count() <= 0) return;
+  // A thread that polls: a signal handler can neither start one nor wake one safely.
+  watchdog_ = std::thread([this, deadline] {
+    constexpr auto kPoll = std::chrono::milliseconds(50);
+    while (!done_ && !g_stop) std::this_thread::sleep_for(kPoll);
+    for (auto waited = std::chrono::milliseconds(0); !done_ && waited < deadline; waited += kPoll)
+      std::this_thread::sleep_for(kPoll);
+    if (done_) return;
+    const int signo = g_signal;
+    const std::string line = std::string("rgbdvo: stopped by ") +
+                             (signo == SIGINT ? "SIGINT" : "SIGTERM") +
+                             " before the frames in hand were done; every row written is whole\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, line.data(), line.size());
+    _exit(128 + signo);
+  });
 }
 
 StopOnSignals::~StopOnSignals() {
+  done_ = true;
+  if (watchdog_.joinable()) watchdog_.join();
   sigaction(SIGINT, &g_previous_int, nullptr);
   sigaction(SIGTERM, &g_previous_term, nullptr);
 }

@@ -10,8 +10,10 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "output_paths.hpp"
 #include "rgbdvo/odometry/odometry.hpp"
 #include "rgbdvo/pipeline/run.hpp"
 #include "rgbdvo/pipeline/trajectory_writer.hpp"
@@ -24,9 +26,10 @@ struct TrajectoryOutputs {
   std::string csv, tum, kitti;
   std::string stamp = "color";   // --stamp, as ParseStampTime takes it
   void AddFlags(CLI::App* cmd);  // --csv (--out), --tum, --kitti, --stamp
-  // Throws naming the file when an output is one of `inputs` (existing files; others are
-  // ignored) or both outputs are the same file: writing would destroy what the run reads.
-  void RefuseInputs(const std::vector<std::string>& inputs) const;
+  // Throws naming the file when an output (these and `others`, such as --plot) is one of
+  // `inputs` or two outputs are the same file: writing would destroy what the run reads.
+  void RefuseInputs(const std::vector<std::string>& inputs,
+                    const std::vector<OutputPath>& others = {}) const;
   bool UsesStdout() const { return csv == "-" || tum == "-" || kitti == "-"; }
   // A writer per file given; throws naming a file that cannot be written.
   std::vector<std::unique_ptr<TrajectoryWriter>> Open() const;
@@ -41,16 +44,23 @@ void LimitOpenCvThreads();
 
 // SIGINT and SIGTERM while an instance lives: the first one only sets a flag (the run finishes
 // the frame in hand, writes it and stops, so nothing computed is lost); a second one ends the
-// process the default way. The previous handlers are restored on destruction.
+// process the default way. With a `deadline`, a process still running that long after the first
+// signal ends itself (exit 128 + the signal, one line saying so): every row written is whole,
+// so only the frames in hand are lost, and a watchdog's signal always stops a run in time. The
+// previous handlers are restored on destruction.
 class StopOnSignals {
  public:
-  StopOnSignals();
+  explicit StopOnSignals(std::chrono::milliseconds deadline = std::chrono::milliseconds(0));
   ~StopOnSignals();
   StopOnSignals(const StopOnSignals&) = delete;
   StopOnSignals& operator=(const StopOnSignals&) = delete;
   // Set by the first signal; for sources that poll a flag (KinectSourceOptions::stop).
   static std::atomic<bool>& Flag();
   static int Signal();  // the signal's number, 0 while none came
+
+ private:
+  std::atomic<bool> done_{false};
+  std::thread watchdog_;  // with a deadline: ends the process that long after the first signal
 };
 
 // `inner` until StopOnSignals::Flag() is set, then the end (the frames in flight still finish).

@@ -15,11 +15,16 @@ const std::string kThreadsHelp =
     std::to_string(RunOptions::kMaxAutoThreads);
 
 const std::vector<RunParameter> kParameters = {
-    {"run.threads", "threads", kThreadsHelp.c_str(),
-     [](R& r) -> ParameterRef { return &r.threads; }},
-    {"run.queue_frames", "queue-frames",
+    {"run.threads",
+     "threads",
+     kThreadsHelp.c_str(),
+     [](R& r) -> ParameterRef { return &r.threads; },
+     {0, 256}},
+    {"run.queue_frames",
+     "queue-frames",
      "frames read ahead of the odometry at most, raised to the number of workers (bounds memory)",
-     [](R& r) -> ParameterRef { return &r.queue_frames; }},
+     [](R& r) -> ParameterRef { return &r.queue_frames; },
+     {1, 256}},
     {"run.parallel_keyframe_sift", "parallel-keyframe-sift",
      "with --threads 2 or more and tracking: run a new keyframe's SIFT and the frame before's "
      "side by side (shorter keyframe frames; more CPU where the two cores slow each other; same "

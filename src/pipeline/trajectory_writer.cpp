@@ -54,9 +54,18 @@ bool FileTrajectoryWriter::Ascending(double timestamp) {
 
 void FileTrajectoryWriter::EndRow() {
   out_.flush();
-  if (!out_)
-    throw std::runtime_error((path_ == "-" ? std::string("standard output") : path_) +
-                             ": write failed (disk full, file gone or pipe closed?)");
+  if (out_) {
+    if (path_ != "-") whole_rows_bytes_ = out_.tellp();
+    return;
+  }
+  if (path_ == "-")
+    throw std::runtime_error("standard output: write failed (pipe closed or disk full?)");
+  // A write cut short leaves part of a row: closing may write more of it, so cut after closing.
+  out_.close();
+  std::error_code ec;
+  std::filesystem::resize_file(path_, static_cast<std::uintmax_t>(whole_rows_bytes_), ec);
+  throw std::runtime_error(path_ + ": write failed (disk full or file gone?); the file ends at " +
+                           "its last whole row");
 }
 
 CsvTrajectoryWriter::CsvTrajectoryWriter(const std::string& path, StampTime stamp)

@@ -150,6 +150,16 @@ bool FakenectSource::Skip() {
   return true;
 }
 
+std::vector<std::string> FakenectSource::Files() const {
+  std::vector<std::string> files;
+  files.reserve(2 * pairs_.size());
+  for (const auto& [color, depth] : pairs_) {
+    files.push_back((fs::path(folder_) / color.file).string());
+    files.push_back((fs::path(folder_) / depth.file).string());
+  }
+  return files;
+}
+
 std::string FakenectSource::Describe() const {
   std::ostringstream s;
   s << "fakenect recording " << folder_ << ": " << pairs_.size() << " colour-depth pairs within "

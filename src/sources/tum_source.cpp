@@ -155,6 +155,16 @@ bool TumSource::Skip() {
   return true;
 }
 
+std::vector<std::string> TumSource::Files() const {
+  std::vector<std::string> files;
+  files.reserve(2 * pairs_.size());
+  for (const TumPair& p : pairs_) {
+    files.push_back((fs::path(folder_) / p.rgb.path).string());
+    files.push_back((fs::path(folder_) / p.depth.path).string());
+  }
+  return files;
+}
+
 std::string TumSource::rgb_list() const {
   return origin_.empty() ? (fs::path(folder_) / "rgb.txt").string() : origin_;
 }

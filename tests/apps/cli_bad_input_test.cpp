@@ -194,3 +194,81 @@ TEST_CASE("Files that are not regular files are refused before they are opened, 
   CHECK_THAT(out, Catch::Contains("big.cfg: 2097152 bytes, above the limit of 1 MiB for "
                                   "configuration files"));
 }
+
+TEST_CASE(
+    "Number flags and configuration values beyond a real camera's range are refused at once") {
+  // Each of these once ran for seconds to minutes and took gigabytes before failing or finishing.
+  const std::string dir = MakeTempDir("cli_ranges");
+  WriteTumSequence(dir, SyntheticScene(), PinholeCamera(), MakeSmoothPath(2));
+  const std::string run = "run " + dir + " --calib " + Calib(dir) + " --tum " + dir + "/t.txt ";
+  for (const auto& [flag, range] :
+       {std::pair<std::string, std::string>{"--threads 1000000", "[0, 256]"},
+        {"--track-window 20001", "[3, 101]"},
+        {"--track-warp-window 20001", "[3, 101]"},
+        {"--octave-layers 5000", "[1, 10]"},
+        {"--track-levels 2000000000", "[0, 8]"},
+        {"--queue-frames 100000", "[1, 256]"}}) {
+    INFO(flag);
+    int code = 0;
+    const std::string out = Rgbdvo(run + flag, &code);
+    INFO(out);
+    CHECK(code == 2);
+    CHECK_THAT(out, Catch::Contains(flag.substr(0, flag.find(' '))) && Catch::Contains(range));
+    CHECK_FALSE(std::filesystem::exists(dir + "/t.txt"));
+  }
+  const std::string config = dir + "/big.conf";
+  std::ofstream(config) << "tracking.window_px = 100001\n";
+  int code = 0;
+  const std::string out = Rgbdvo(run + "--config " + config, &code);
+  INFO(out);
+  CHECK(code == 1);
+  CHECK_THAT(out, Catch::Contains(config + ":1") && Catch::Contains("[3, 101]"));
+}
+
+TEST_CASE(
+    "No output overwrites an input: images, lists, calibration, configuration, trajectories") {
+  // By device and inode: a hard link to an image is the image.
+  const std::string dir = MakeTempDir("cli_onto_inputs");
+  WriteTumSequence(dir, SyntheticScene(), PinholeCamera(), MakeSmoothPath(3));
+  const std::string calib = Calib(dir);
+  const std::vector<TumListEntry> frames = ReadTumList(dir + "/rgb.txt");
+  const std::string image = dir + "/" + frames[1].path, link = dir + "/link.png";
+  std::filesystem::create_hard_link(image, link);
+  const std::string config = dir + "/my.conf";
+  std::ofstream(config) << "matching.ratio = 0.8\n";
+  const std::string run = "run " + dir + " --calib " + calib + " --config " + config + " ";
+  const std::string est = dir + "/est.txt", gt = dir + "/groundtruth.txt";
+  int code = 0;
+  REQUIRE(Rgbdvo(run + "--tum " + est, &code).size() > 0);
+  REQUIRE(code == 0);
+  const std::vector<std::string> inputs = {image, dir + "/rgb.txt", calib, config, est, gt};
+  std::vector<std::string> before;
+  before.reserve(inputs.size());
+  for (const std::string& f : inputs) before.push_back(Slurp(f));
+  const std::string tum_out = dir + "/fresh.txt";
+  const std::pair<std::string, std::string> cases[] = {
+      {run + "--tum " + image, "is an input of this command"},
+      {run + "--csv " + link, "is an input of this command"},
+      {run + "--kitti " + config, "is an input of this command"},
+      {run + "--tum " + tum_out + " --plot " + dir + "/rgb.txt", "is an input of this command"},
+      {run + "--tum " + tum_out + " --plot " + calib, "is an input of this command"},
+      {run + "--tum " + tum_out + " --plot " + tum_out, "given for both --tum and --plot"},
+      {"plot " + est + " --png " + est, "is an input of this command"},
+      {"plot " + est + " --gt " + gt + " --png " + gt, "is an input of this command"},
+      {"eval " + gt + " " + est + " --plot " + est, "is an input of this command"},
+      {"eval " + gt + " " + est + " --plot-errors " + gt, "is an input of this command"},
+      {"eval " + gt + " " + est + " --plot-xyz " + est, "is an input of this command"},
+  };
+  for (const auto& [args, expected] : cases) {
+    INFO(args);
+    const std::string out = Rgbdvo(args, &code);
+    INFO(out);
+    CHECK(code == 1);
+    CHECK_THAT(out, Catch::Contains(expected));
+  }
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    INFO(inputs[i]);
+    CHECK(Slurp(inputs[i]) == before[i]);
+  }
+  CHECK_FALSE(std::filesystem::exists(tum_out));
+}

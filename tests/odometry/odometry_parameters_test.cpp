@@ -1,6 +1,7 @@
 #include "rgbdvo/odometry/odometry_parameters.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <set>
 #include <sstream>
 #include <string>
@@ -42,6 +43,43 @@ TEST_CASE("Every odometry parameter has one key, one flag and a field of its own
           std::string(OdometryParameters()[i].key) + " = " + OdometryParameters()[i].Get(o));
   }
   CHECK(i == OdometryParameters().size());
+}
+
+TEST_CASE("Every number parameter has a bounded range holding both presets' values") {
+  const auto holds = [](const ParameterRange& r, const std::string& value) {
+    const double v = std::stod(value);
+    return v >= r.min && v <= r.max;
+  };
+  const OdometryOptions defaults, paper = PresetOptions("paper");
+  int numbers = 0;
+  for (const OdometryParameter& p : OdometryParameters()) {
+    INFO(p.key << " in " << FormatRange(p.range));
+    if (!p.IsNumber()) continue;
+    ++numbers;
+    CHECK(p.range.Bounded());
+    CHECK(holds(p.range, p.Get(defaults)));
+    CHECK(holds(p.range, p.Get(paper)));
+  }
+  CHECK(numbers > 30);
+}
+
+TEST_CASE("A number outside its parameter's range is refused naming the parameter and range") {
+  OdometryOptions o;
+  const OdometryParameter* window = FindParameter("tracking.window_px");
+  REQUIRE(window != nullptr);
+  CHECK_THROWS_WITH(window->Set("20001", &o), Catch::Contains("tracking.window_px") &&
+                                                  Catch::Contains("20001") &&
+                                                  Catch::Contains("[3, 101]"));
+  CHECK_THROWS_WITH(window->Set("2", &o), Catch::Contains("[3, 101]"));
+  window->Set("101", &o);  // both ends are in the range
+  CHECK(o.tracking.window_px == 101);
+  window->Set("3", &o);
+  CHECK(o.tracking.window_px == 3);
+  CHECK_THROWS_WITH(FindParameter("features.contrast_threshold")->Set("nan", &o),
+                    Catch::Contains("features.contrast_threshold"));
+  std::istringstream config("tracking.window_px = 100001\n");
+  CHECK_THROWS_WITH(ApplyConfig(config, "x.conf", &o),
+                    Catch::Contains("x.conf:1") && Catch::Contains("[3, 101]"));
 }
 
 TEST_CASE("A parameter set from text reads back as the same text, for every type") {

@@ -5,9 +5,11 @@
 // are all made from this one list, so they cannot disagree. The run's own options (threads) are
 // declared the same way (pipeline/run_parameters.hpp).
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <limits>
 #include <string>
 #include <utility>
 #include <variant>
@@ -22,11 +24,24 @@ namespace rgbdvo {
 using ParameterRef = std::variant<bool*, int*, uint32_t*, double*, SiftImplementation*,
                                   MotionModelKind*, FloorSource*>;
 
+// The values a number parameter may take, both ends included: what a real camera and machine
+// could use, so that no value sizes memory or time beyond them (OptionsStruct::Check() keeps the
+// rules between fields and the strict bounds, such as "> 0").
+struct ParameterRange {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool Bounded() const { return std::isfinite(min) && std::isfinite(max); }
+};
+
 // The value at `field` as configuration text (true/false for booleans).
 std::string FormatParameter(ParameterRef field);
+// "[3, 101]": the range as the errors and --help show it.
+std::string FormatRange(const ParameterRange& range);
 // Parses `text` into `field`. Throws std::invalid_argument naming `key` and the text when it is
-// not a value of the field's type (booleans: true/false/1/0/yes/no/on/off).
-void ParseParameter(const char* key, const std::string& text, ParameterRef field);
+// not a value of the field's type (booleans: true/false/1/0/yes/no/on/off) or, for a number,
+// outside `range`.
+void ParseParameter(const char* key, const std::string& text, ParameterRef field,
+                    const ParameterRange& range = {});
 
 template <typename Options>
 struct Parameter {
@@ -34,10 +49,17 @@ struct Parameter {
   const char* flag;  // "ratio": --ratio VALUE; a boolean has --NAME and --no-NAME
   const char* help;
   ParameterRef (*field)(Options&);
+  ParameterRange range = {};  // every number parameter has one (a test checks)
 
   bool IsBool() const {
     Options o;
     return std::holds_alternative<bool*>(field(o));
+  }
+  bool IsNumber() const {
+    Options o;
+    const ParameterRef f = field(o);
+    return std::holds_alternative<int*>(f) || std::holds_alternative<uint32_t*>(f) ||
+           std::holds_alternative<double*>(f);
   }
   // The value in `options` as configuration text.
   std::string Get(const Options& options) const {
@@ -45,7 +67,7 @@ struct Parameter {
     return FormatParameter(field(const_cast<Options&>(options)));
   }
   void Set(const std::string& text, Options* options) const {
-    ParseParameter(key, text, field(*options));
+    ParseParameter(key, text, field(*options), range);
   }
 };
 using OdometryParameter = Parameter<OdometryOptions>;

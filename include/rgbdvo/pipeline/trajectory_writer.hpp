@@ -39,7 +39,9 @@ class FileTrajectoryWriter : public TrajectoryWriter {
  protected:
   // Throws naming the file.
   FileTrajectoryWriter(const std::string& path, StampTime stamp);
-  void EndRow();  // flushes; throws naming the file when the write failed (disk full, ...)
+  // Flushes; when the write failed (disk full, ...) cuts the file back to its last whole row and
+  // throws naming the file.
+  void EndRow();
   // kDepth: false (and counted) for a time not after the last row's, else the time is kept as
   // the last row's. kColor: always true.
   bool Ascending(double timestamp);
@@ -51,6 +53,7 @@ class FileTrajectoryWriter : public TrajectoryWriter {
   bool has_last_ = false;
   double last_ = 0;
   int left_out_ = 0;
+  std::streamoff whole_rows_bytes_ = 0;  // the file's size after its last whole row
 };
 
 // CSV: header `frame,timestamp,tx,ty,tz,qx,qy,qz,qw,matches,inliers,status`, a row per frame.

@@ -38,6 +38,7 @@ class FakenectSource : public FrameSource {
   std::string Describe() const override;
   bool Skip() override;
   std::optional<size_t> Size() const override { return pairs_.size(); }
+  std::vector<std::string> Files() const override;
 
   size_t size() const { return pairs_.size(); }
   int unpaired() const { return unpaired_; }  // colour frames without depth in the window

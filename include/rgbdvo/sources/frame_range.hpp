@@ -25,6 +25,7 @@ class FrameRangeSource : public FrameSource {
   std::optional<Frame> Next() override;
   std::string Describe() const override;
   std::optional<size_t> Size() const override;  // the frames within the range
+  std::vector<std::string> Files() const override { return inner_->Files(); }
 
  private:
   std::unique_ptr<FrameSource> inner_;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rgbdvo/sources/frame.hpp"
 
@@ -23,6 +24,9 @@ class FrameSource {
   // Frames in all (read or not), when known in advance (recorded folders); nullopt for a live
   // device.
   virtual std::optional<size_t> Size() const { return std::nullopt; }
+  // The image files the frames are read from, when known in advance (recorded folders): no
+  // output may overwrite them. Empty for a device or a single file.
+  virtual std::vector<std::string> Files() const { return {}; }
 };
 
 }  // namespace rgbdvo

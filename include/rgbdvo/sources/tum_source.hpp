@@ -62,6 +62,7 @@ class TumSource : public FrameSource {
   std::string Describe() const override;
   bool Skip() override;
   std::optional<size_t> Size() const override { return pairs_.size(); }
+  std::vector<std::string> Files() const override;
 
   size_t size() const { return pairs_.size(); }
   const std::string& folder() const { return folder_; }
