@@ -20,6 +20,7 @@ constexpr double kKinectStepPerZ2 = 1.0 / (8 * 580 * 0.075);
 // integers do for positive floats) in three passes of 11 bits: a 640 x 480 depth image in about a
 // tenth of std::sort's time.
 void SortPositive(std::vector<float>* values) {
+  if (values->empty()) return;  // memcpy is not given a null pointer, even for no bytes
   constexpr int kBits = 11, kBuckets = 1 << kBits;
   std::vector<uint32_t> keys(values->size()), other(values->size());
   std::memcpy(keys.data(), values->data(), values->size() * sizeof(float));
